@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages FlowScape builds and tests with (run as root; skips what is there).
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config clang-format
+  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtinygltf-dev libassimp-dev
+  libeigen3-dev libopencv-dev nlohmann-json3-dev catch2 libtbb-dev libcli11-dev pybind11-dev
+  python3-dev python3-numpy python3-pytest python3-torch
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,113 @@
+#include "flowscape/geometry.h"
+
+#include <cmath>
+
+namespace flowscape {
+
+Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double theta0,
+                       double theta1) {
+  return {L * (phi - phi0) * std::cos(theta1), L * (theta - theta0)};
+}
+
+Vec2 erp_from_angles(Angles a, int erp_width) {
+  return paper_forward_erp(a.phi, a.theta, erp_width / (2 * kPi), -kPi, -kPi / 2, 0.0);
+}
+
+Angles angles_from_erp(Vec2 p, int erp_width) {
+  const double L = erp_width / (2 * kPi);
+  return {p.x() / L - kPi, p.y() / L - kPi / 2};
+}
+
+Vec3 direction_from_angles(Angles a) {
+  const double c = std::cos(a.theta);
+  return {c * std::cos(a.phi), -c * std::sin(a.phi), -std::sin(a.theta)};
+}
+
+Angles angles_from_direction(const Vec3& d) {
+  return {std::atan2(-d.y(), d.x()), std::atan2(-d.z(), std::sqrt(d.x() * d.x() + d.y() * d.y()))};
+}
+
+Vec2 erp_from_direction(const Vec3& d, int erp_width) {
+  return erp_from_angles(angles_from_direction(d), erp_width);
+}
+
+Vec3 direction_from_erp(Vec2 p, int erp_width) {
+  return direction_from_angles(angles_from_erp(p, erp_width));
+}
+
+namespace {
+
+constexpr std::array<std::string_view, 6> kFaceNames{"front", "right", "back",
+                                                     "left",  "up",    "down"};
+
+const std::array<FaceBasis, 6> kFaceBases{{
+    {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}},   // front
+    {{0, -1, 0}, {-1, 0, 0}, {0, 0, -1}},  // right
+    {{-1, 0, 0}, {0, 1, 0}, {0, 0, -1}},   // back
+    {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},    // left
+    {{0, 0, 1}, {0, -1, 0}, {1, 0, 0}},    // up
+    {{0, 0, -1}, {0, -1, 0}, {-1, 0, 0}},  // down
+}};
+
+}  // namespace
+
+std::string_view face_name(Face face) { return kFaceNames[int(face)]; }
+
+std::optional<Face> face_from_name(std::string_view name) {
+  for (Face face : kFaces)
+    if (face_name(face) == name) return face;
+  return std::nullopt;
+}
+
+const FaceBasis& face_basis(Face face) { return kFaceBases[int(face)]; }
+
+Mat3 face_rotation(Face face) {
+  const FaceBasis& b = face_basis(face);
+  Mat3 m;
+  m << b.right, b.down, b.forward;
+  return m;
+}
+
+CubePoint cube_from_direction(const Vec3& d, int face_size) {
+  Face best = Face::Front;
+  double best_forward = -1e300;
+  for (Face face : kFaces) {
+    const double forward = d.dot(face_basis(face).forward);
+    if (forward > best_forward) best = face, best_forward = forward;
+  }
+  return {best, *face_plane_from_direction(best, d, face_size)};
+}
+
+Vec3 ray_from_cube(Face face, Vec2 pixel, int face_size) {
+  const FaceBasis& b = face_basis(face);
+  const double a = 2 * pixel.x() / face_size - 1, c = 2 * pixel.y() / face_size - 1;
+  return b.forward + a * b.right + c * b.down;
+}
+
+std::optional<Vec2> face_plane_from_direction(Face face, const Vec3& d, int face_size) {
+  const FaceBasis& b = face_basis(face);
+  const double forward = d.dot(b.forward);
+  if (!(forward > 0)) return std::nullopt;
+  const double half = 0.5 * face_size;
+  return Vec2{half * (1 + d.dot(b.right) / forward), half * (1 + d.dot(b.down) / forward)};
+}
+
+Vec2 paper_c2e(Face face, double phi, double elevation, int face_size) {
+  const double half = 0.5 * face_size;
+  if (face == Face::Up || face == Face::Down) {
+    const int n = face == Face::Up ? 0 : 1;
+    const double r = std::tan(kPi / 2 - elevation);
+    return {half * r * std::sin(phi), half * r * std::cos(phi + n * kPi)};
+  }
+  const double local = phi - int(face) * kPi / 2;
+  return {half * std::tan(local), -half * std::tan(elevation) / std::cos(local)};
+}
+
+double wrap_360(double u, int erp_width) {
+  const double W = erp_width;
+  if (u > W / 2) return u - W;
+  if (u <= -W / 2) return u + W;
+  return u;
+}
+
+}  // namespace flowscape

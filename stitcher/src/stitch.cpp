@@ -1,0 +1,343 @@
+#include "flowscape/stitch.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace flowscape {
+namespace {
+
+template <class Body>
+void parallel_rows(int rows, const Body& body) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows), [&](const tbb::blocked_range<int>& range) {
+    for (int row = range.begin(); row != range.end(); ++row) body(row);
+  });
+}
+
+int cube_index(Face face, int i, int j, int face_size) {
+  return (int(face) * face_size + j) * face_size + i;
+}
+
+template <class Resolve>
+Stencil make_stencil(Vec2 position, const Resolve& resolve) {
+  const double sx = position.x() - 0.5, sy = position.y() - 0.5;
+  const int i0 = int(std::floor(sx)), j0 = int(std::floor(sy));
+  return {{resolve(i0, j0), resolve(i0 + 1, j0), resolve(i0, j0 + 1), resolve(i0 + 1, j0 + 1)},
+          float(sx - i0),
+          float(sy - j0)};
+}
+
+std::array<float, 4> bilinear_weights(const Stencil& st) {
+  const float fx = st.fx, fy = st.fy;
+  return {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+}
+
+// Stencil on one face whose taps are clamped to the face.
+Stencil face_stencil(Face face, Vec2 position, int face_size) {
+  return make_stencil(position, [&](int i, int j) {
+    return cube_index(face, std::clamp(i, 0, face_size - 1), std::clamp(j, 0, face_size - 1),
+                      face_size);
+  });
+}
+
+// ERP pixel of tap (i, j): wraps horizontally and continues over the pole, where the column turns
+// half way round.
+int erp_tap(int i, int j, int width, bool& over_pole) {
+  const int height = width / 2;
+  over_pole = j < 0 || j >= height;
+  if (over_pole) {
+    j = j < 0 ? -1 - j : 2 * height - 1 - j;
+    i += width / 2;
+  }
+  i = ((i % width) + width) % width;
+  return j * width + i;
+}
+
+void require_positive_sizes(int face_size, int erp_height) {
+  if (face_size < 2)
+    throw std::invalid_argument("cube face size must be >= 2, got " + std::to_string(face_size));
+  if (erp_height < 2)
+    throw std::invalid_argument("ERP height must be >= 2, got " + std::to_string(erp_height));
+}
+
+template <class T>
+void require_source(const Sampling& sampling, ImageView<T> src, int channels, const char* what) {
+  if (src.width != sampling.src_width || src.height != sampling.src_height)
+    throw std::invalid_argument(std::string(what) + " is " + std::to_string(src.width) + "x" +
+                                std::to_string(src.height) + ", the map expects " +
+                                std::to_string(sampling.src_width) + "x" +
+                                std::to_string(sampling.src_height));
+  if (channels > 0 && src.channels != channels)
+    throw std::invalid_argument(std::string(what) + " has " + std::to_string(src.channels) +
+                                " channels, expected " + std::to_string(channels));
+}
+
+void require_flow_input(const Sampling& sampling, const FlowInput& in) {
+  require_source(sampling, in.flow, 2, "flow");
+  if (in.instance.data) require_source(sampling, in.instance, 1, "instance image");
+  if (in.valid.data) require_source(sampling, in.valid, 1, "valid mask");
+}
+
+template <class T>
+T from_float(float value) {
+  if constexpr (std::is_floating_point_v<T>) {
+    return value;
+  } else {
+    const float rounded = std::floor(value + 0.5f);
+    return T(std::clamp(rounded, float(std::numeric_limits<T>::min()),
+                        float(std::numeric_limits<T>::max())));
+  }
+}
+
+template <class T>
+void blend_source(const Stencil& st, ImageView<const T> src, float* out) {
+  const auto w = bilinear_weights(st);
+  for (int c = 0; c < src.channels; ++c) {
+    out[c] = 0;
+    for (int k = 0; k < 4; ++k) out[c] += w[k] * src.data[std::size_t(st.tap[k]) * src.channels + c];
+  }
+}
+
+// The source pixel nearest to a stencil's sample point (never an apron pixel's blend).
+int nearest_source(const Sampling& sampling, const Stencil& st) {
+  const int tap = st.tap[st.nearest_tap()];
+  return tap >= 0 ? tap : sampling.apron[-1 - tap].tap[sampling.apron[-1 - tap].nearest_tap()];
+}
+
+// One tap's flow in the plane the destination blends in, with what decides whether it may blend.
+struct TapFlow {
+  double u = 0, v = 0;
+  std::uint16_t instance = 0;
+  std::uint8_t valid = 0;
+  bool known = false;
+};
+
+TapFlow source_flow(const FlowInput& in, int index) {
+  const float* f = in.flow.data + 2 * std::size_t(index);
+  return {f[0],
+          f[1],
+          in.instance.data ? in.instance.data[index] : std::uint16_t(0),
+          in.valid.data ? in.valid.data[index] : std::uint8_t(1),
+          is_known_flow(f[0], f[1])};
+}
+
+// Bilinear blend of the known flows of the taps that share the nearest tap's instance.
+TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
+  const TapFlow& nearest = taps[st.nearest_tap()];
+  const auto w = bilinear_weights(st);
+  TapFlow out{0, 0, nearest.instance, nearest.valid, false};
+  double total = 0;
+  for (int k = 0; k < 4; ++k) {
+    if (!taps[k].known || taps[k].instance != nearest.instance) continue;
+    out.u += w[k] * taps[k].u, out.v += w[k] * taps[k].v, total += w[k];
+  }
+  if (total <= 0) return out;
+  out.u /= total, out.v /= total, out.known = true;
+  return out;
+}
+
+// Flow of each apron pixel in its own face's (extended) plane: the neighbour's blended target,
+// projected onto this face's plane.
+std::vector<TapFlow> apron_flows(const CubeToErp& map, const FlowInput& in) {
+  const int N = map.face_size;
+  std::vector<TapFlow> flows(map.apron_pixels.size());
+  for (std::size_t a = 0; a < flows.size(); ++a) {
+    const Stencil& st = map.sampling.apron[a];
+    const ApronPixel& pixel = map.apron_pixels[a];
+    TapFlow taps[4];
+    for (int k = 0; k < 4; ++k) taps[k] = source_flow(in, st.tap[k]);
+    TapFlow blended = blend_flows(st, taps);
+    if (!blended.known) {
+      flows[a] = blended;
+      continue;
+    }
+    const Vec3 target = ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
+    const auto plane = face_plane_from_direction(pixel.face, target, N);
+    blended.known = plane.has_value();
+    if (plane) blended.u = plane->x() - (pixel.i + 0.5), blended.v = plane->y() - (pixel.j + 0.5);
+    flows[a] = blended;
+  }
+  return flows;
+}
+
+void write_flow_pixel(const TapFlow& blended, std::optional<Vec2> flow, float* out, std::uint8_t* valid) {
+  out[0] = flow ? float(flow->x()) : kUnknownFlow;
+  out[1] = flow ? float(flow->y()) : kUnknownFlow;
+  *valid = flow && blended.valid;
+}
+
+}  // namespace
+
+CubeToErp make_cube_to_erp(int face_size, int erp_height) {
+  require_positive_sizes(face_size, erp_height);
+  const int W = 2 * erp_height, N = face_size, P = N + 2;
+  CubeToErp map{N, W, {W, erp_height, N, 6 * N, std::vector<Stencil>(std::size_t(W) * erp_height), {}}, {}};
+  // tap of every pixel of the extended faces (apron included), apron pixels numbered in order
+  std::vector<std::int32_t> extended_tap(std::size_t(6) * P * P);
+  for (Face face : kFaces)
+    for (int j = -1; j <= N; ++j)
+      for (int i = -1; i <= N; ++i) {
+        std::int32_t& tap = extended_tap[(std::size_t(face) * P + j + 1) * P + i + 1];
+        if (i >= 0 && j >= 0 && i < N && j < N) {
+          tap = cube_index(face, i, j, N);
+          continue;
+        }
+        const CubePoint p = cube_from_direction(ray_from_cube(face, {i + 0.5, j + 0.5}, N), N);
+        map.apron_pixels.push_back({face, i, j, p.face, p.pixel});
+        map.sampling.apron.push_back(face_stencil(p.face, p.pixel, N));
+        tap = -std::int32_t(map.sampling.apron.size());
+      }
+  parallel_rows(erp_height, [&](int y) {
+    for (int x = 0; x < W; ++x) {
+      const CubePoint p = cube_from_direction(direction_from_erp({x + 0.5, y + 0.5}, W), N);
+      map.sampling.stencils[std::size_t(y) * W + x] = make_stencil(p.pixel, [&](int i, int j) {
+        return extended_tap[(std::size_t(p.face) * P + j + 1) * P + i + 1];
+      });
+    }
+  });
+  return map;
+}
+
+ErpToCube make_erp_to_cube(int erp_height, int face_size) {
+  require_positive_sizes(face_size, erp_height);
+  const int W = 2 * erp_height, N = face_size;
+  ErpToCube map{W, N, {N, 6 * N, W, erp_height, std::vector<Stencil>(std::size_t(N) * 6 * N), {}},
+                std::vector<std::uint8_t>(std::size_t(N) * 6 * N)};
+  parallel_rows(6 * N, [&](int row) {
+    for (int i = 0; i < N; ++i) {
+      const std::size_t index = std::size_t(row) * N + i;
+      const Vec3 d = ray_from_cube(Face(row / N), {i + 0.5, row % N + 0.5}, N);
+      int tap_number = 0;
+      map.sampling.stencils[index] = make_stencil(erp_from_direction(d, W), [&](int x, int y) {
+        bool over_pole = false;
+        const int tap = erp_tap(x, y, W, over_pole);
+        map.over_pole[index] |= std::uint8_t(over_pole) << tap_number++;
+        return tap;
+      });
+    }
+  });
+  return map;
+}
+
+template <class T>
+Image<T> resample_bilinear(const Sampling& sampling, ImageView<const T> src) {
+  require_source(sampling, src, 0, "source image");
+  const int C = src.channels;
+  std::vector<float> apron(sampling.apron.size() * C);
+  for (std::size_t a = 0; a < sampling.apron.size(); ++a) blend_source(sampling.apron[a], src, &apron[a * C]);
+  Image<T> out(sampling.dst_width, sampling.dst_height, C);
+  parallel_rows(sampling.dst_height, [&](int y) {
+    const Stencil* st = &sampling.stencils[std::size_t(y) * sampling.dst_width];
+    T* o = out.pixel(0, y);
+    float value[16];
+    for (int x = 0; x < sampling.dst_width; ++x, ++st, o += C) {
+      if ((st->tap[0] | st->tap[1] | st->tap[2] | st->tap[3]) >= 0) {
+        blend_source(*st, src, value);
+      } else {
+        const auto w = bilinear_weights(*st);
+        for (int c = 0; c < C; ++c) value[c] = 0;
+        for (int k = 0; k < 4; ++k) {
+          const int tap = st->tap[k];
+          for (int c = 0; c < C; ++c)
+            value[c] += w[k] * (tap >= 0 ? float(src.data[std::size_t(tap) * C + c]) : apron[std::size_t(-1 - tap) * C + c]);
+        }
+      }
+      for (int c = 0; c < C; ++c) o[c] = from_float<T>(value[c]);
+    }
+  });
+  return out;
+}
+
+template <class T>
+Image<T> resample_nearest(const Sampling& sampling, ImageView<const T> src) {
+  require_source(sampling, src, 0, "source image");
+  const int C = src.channels;
+  Image<T> out(sampling.dst_width, sampling.dst_height, C);
+  parallel_rows(sampling.dst_height, [&](int y) {
+    for (int x = 0; x < sampling.dst_width; ++x) {
+      const Stencil& st = sampling.stencils[std::size_t(y) * sampling.dst_width + x];
+      const T* p = src.data + std::size_t(nearest_source(sampling, st)) * C;
+      std::copy(p, p + C, out.pixel(x, y));
+    }
+  });
+  return out;
+}
+
+#define FLOWSCAPE_RESAMPLE(T)                                                  \
+  template Image<T> resample_bilinear(const Sampling&, ImageView<const T>); \
+  template Image<T> resample_nearest(const Sampling&, ImageView<const T>);
+FLOWSCAPE_RESAMPLE(std::uint8_t)
+FLOWSCAPE_RESAMPLE(std::uint16_t)
+FLOWSCAPE_RESAMPLE(float)
+#undef FLOWSCAPE_RESAMPLE
+
+FlowOutput cube_to_erp_flow(const CubeToErp& map, const FlowInput& cube, FlowMode mode) {
+  require_flow_input(map.sampling, cube);
+  const int W = map.erp_width, H = W / 2, N = map.face_size;
+  const std::vector<TapFlow> apron = apron_flows(map, cube);
+  FlowOutput out{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)};
+  parallel_rows(H, [&](int y) {
+    for (int x = 0; x < W; ++x) {
+      const Stencil& st = map.sampling.stencils[std::size_t(y) * W + x];
+      TapFlow taps[4];
+      for (int k = 0; k < 4; ++k)
+        taps[k] = st.tap[k] >= 0 ? source_flow(cube, st.tap[k]) : apron[-1 - st.tap[k]];
+      const TapFlow blended = blend_flows(st, taps);
+      std::optional<Vec2> flow;
+      if (blended.known) {
+        // sample point = tap 0's pixel centre + (fx, fy), in the extended plane of its face
+        Face face;
+        Vec2 corner;
+        if (st.tap[0] >= 0) {
+          const int local = st.tap[0] % (N * N);
+          face = Face(st.tap[0] / (N * N)), corner = {local % N, local / N};
+        } else {
+          const ApronPixel& a = map.apron_pixels[-1 - st.tap[0]];
+          face = a.face, corner = {a.i, a.j};
+        }
+        const Vec2 target_plane = corner + Vec2(0.5 + st.fx + blended.u, 0.5 + st.fy + blended.v);
+        const Vec2 e = erp_from_direction(ray_from_cube(face, target_plane, N), W);
+        const double classic_u = std::fmod(e.x(), double(W)) - (x + 0.5);
+        flow = Vec2(mode == FlowMode::Wrap360 ? wrap_360(classic_u, W) : classic_u, e.y() - (y + 0.5));
+      }
+      write_flow_pixel(blended, flow, out.flow.pixel(x, y), out.valid.pixel(x, y));
+    }
+  });
+  return out;
+}
+
+FlowOutput erp_to_cube_flow(const ErpToCube& map, const FlowInput& erp) {
+  require_flow_input(map.sampling, erp);
+  const int W = map.erp_width, N = map.face_size;
+  FlowOutput out{Image<float>(N, 6 * N, 2), Image<std::uint8_t>(N, 6 * N, 1)};
+  parallel_rows(6 * N, [&](int row) {
+    const Face face = Face(row / N);
+    for (int i = 0; i < N; ++i) {
+      const std::size_t index = std::size_t(row) * N + i;
+      const Stencil& st = map.sampling.stencils[index];
+      TapFlow taps[4];
+      for (int k = 0; k < 4; ++k) {
+        taps[k] = source_flow(erp, st.tap[k]);
+        taps[k].u = wrap_360(taps[k].u, W);  // classic flow blends like 360-degree flow
+        if (map.over_pole[index] >> k & 1) taps[k].v = -taps[k].v;  // rows count the other way there
+      }
+      const TapFlow blended = blend_flows(st, taps);
+      const Vec2 centre{i + 0.5, row % N + 0.5};
+      std::optional<Vec2> flow;
+      if (blended.known) {
+        const Vec2 sample = erp_from_direction(ray_from_cube(face, centre, N), W);
+        const Vec3 target = direction_from_erp(sample + Vec2(blended.u, blended.v), W);
+        if (const auto plane = face_plane_from_direction(face, target, N)) flow = *plane - centre;
+      }
+      write_flow_pixel(blended, flow, out.flow.pixel(i, row), out.valid.pixel(i, row));
+    }
+  });
+  return out;
+}
+
+}  // namespace flowscape

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# End-to-end checks of stitch_erp and flowviz as a user runs them: the demo, resume, and bad input
+# (non-zero exit, one clear line naming the file, no damaged output).
+set -u
+bin=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passes=0 failures=0
+check() {  # check DESCRIPTION COMMAND...
+  local what=$1; shift
+  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
+}
+fails_clearly() {  # fails_clearly EXPECTED_TEXT COMMAND...: non-zero exit, one stderr line with the text
+  local expected=$1; shift
+  "$@" >"$work/out" 2>"$work/err" && return 1
+  [ "$(wc -l <"$work/err")" -eq 1 ] && grep -qF -- "$expected" "$work/err"
+}
+
+check "stitch_erp --help" "$bin/stitch_erp" --help
+check "flowviz --help" "$bin/flowviz" --help
+check "demo runs" "$bin/stitch_erp" --demo "$work/demo" --face-size 64 --height 64
+demo_out=$("$bin/stitch_erp" --demo "$work/demo" --face-size 64 --height 64 2>/dev/null)
+worst=$(sed -n 's/.*largest error \([0-9.e+-]*\) px/\1/p' <<<"$demo_out")
+check "demo yaw flow is exact (largest error $worst px)" awk -v e="$worst" 'BEGIN { exit !(e != "" && e < 0.01) }'
+for m in color/000000.png color/000001.png flow/000000.flo semantic/000000.png instance/000000.png depth/000000.exr valid/000000.png; do
+  check "demo wrote erp/$m" test -s "$work/demo/erp/$m"
+done
+check "stitch a cubemap folder" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp" --height 64
+check "rerun resumes (nothing left to do)" bash -c "'$bin/stitch_erp' '$work/demo/cube' -o '$work/erp' --height 64 2>&1 | grep -q 'nothing to do'"
+check "classic flow mode" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp_classic" --height 64 --flow-mode classic
+check "flowviz writes a PNG" "$bin/flowviz" "$work/erp/flow/000000.flo" -o "$work/viz.png" --wheel middlebury
+check "flowviz PNG exists" test -s "$work/viz.png"
+
+check "flowviz: missing file" fails_clearly "missing.flo: file not found" "$bin/flowviz" "$work/missing.flo" -o "$work/missing.png"
+check "flowviz: no output for a missing file" test ! -e "$work/missing.png"
+head -c 100 "$work/erp/flow/000000.flo" >"$work/cut.flo"
+check "flowviz: truncated .flo" fails_clearly "cut.flo: truncated .flo data" "$bin/flowviz" "$work/cut.flo" -o "$work/cut.png"
+check "flowviz: no output for a truncated file" test ! -e "$work/cut.png"
+check "flowviz: bad option value" bash -c "! '$bin/flowviz' '$work/erp/flow/000000.flo' --scale -3 2>/dev/null"
+check "stitch_erp: missing folder" fails_clearly "cubemap folder not found" "$bin/stitch_erp" "$work/nope" -o "$work/x"
+head -c 200 "$work/demo/cube/left/color/000001.png" >"$work/short.png"
+mv "$work/short.png" "$work/demo/cube/left/color/000001.png"
+check "stitch_erp: corrupt face names the file" fails_clearly "left/color/000001.png" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp3" --height 64
+check "stitch_erp: no output for the corrupt frame" test ! -e "$work/erp3/color/000001.png"
+check "stitch_erp: no partial files" bash -c "! find '$work/erp3' -name '.partial-*' | grep -q ."
+
+echo "$passes passed, $failures failed"
+exit $((failures != 0))
