@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "flowscape/geometry.h"
 #include "independent_math.h"
@@ -23,6 +24,13 @@ TEST_CASE("ERP pixel coordinates follow the design conventions (paper Eq. 1)") {
   CHECK(erp_from_direction({0, 1, 0}, W).x() == Approx(256));   // left: 1/4 W
   CHECK(erp_from_direction({0, 0, 1}, W).y() == Approx(0).margin(1e-9));
   CHECK(erp_from_direction({0, 0, -1}, W).y() == Approx(512));
+  for (double phi : {-3.0, -0.5, 0.0, 1.0, 3.1})
+    for (double theta : {-1.5, 0.0, 0.7}) {
+      const Vec2 ours = erp_from_angles({phi, theta}, W);
+      const Vec2 paper = paper_forward_erp(phi, theta, W / (2 * kPi), -kPi, -kPi / 2, 0.0);
+      CHECK(ours.x() == Approx(paper.x()));
+      CHECK(ours.y() == Approx(paper.y()));
+    }
   // Eq. 1 with a standard parallel scales x by cos(theta1)
   CHECK(paper_forward_erp(1.0, 0.2, 10, 0, 0, kPi / 3).x() == Approx(5.0));
   CHECK(paper_forward_erp(1.0, 0.2, 10, 0, 0, kPi / 3).y() == Approx(2.0));
@@ -99,4 +107,17 @@ TEST_CASE("360-degree flow takes the short way round (paper Eq. 3, -W/2 < u <= W
   CHECK(wrap_360(501, W) == -499);
   CHECK(wrap_360(990, W) == -10);
   CHECK(wrap_360(-990, W) == 10);
+}
+
+TEST_CASE("fast_atan2 agrees with std::atan2 to 1e-10 rad in every octant") {
+  double worst = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double angle = -kPi + 2 * kPi * (i + 0.37) / 20000, radius = 0.001 + i % 7;
+    const double y = radius * std::sin(angle), x = radius * std::cos(angle);
+    worst = std::max(worst, std::abs(fast_atan2(y, x) - std::atan2(y, x)));
+  }
+  CHECK(worst < 1e-10);  // the series alone is good to 1e-11
+  CHECK(fast_atan2(0.0, -1.0) == Approx(kPi));  // the seam belongs to +pi
+  CHECK(fast_atan2(0.0, 0.0) == 0);
+  CHECK(fast_atan2(-1.0, 0.0) == Approx(-kPi / 2));
 }

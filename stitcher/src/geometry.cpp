@@ -9,10 +9,6 @@ Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double t
   return {L * (phi - phi0) * std::cos(theta1), L * (theta - theta0)};
 }
 
-Vec2 erp_from_angles(Angles a, int erp_width) {
-  return paper_forward_erp(a.phi, a.theta, erp_width / (2 * kPi), -kPi, -kPi / 2, 0.0);
-}
-
 Angles angles_from_erp(Vec2 p, int erp_width) {
   const double L = erp_width / (2 * kPi);
   return {p.x() / L - kPi, p.y() / L - kPi / 2};
@@ -21,14 +17,6 @@ Angles angles_from_erp(Vec2 p, int erp_width) {
 Vec3 direction_from_angles(Angles a) {
   const double c = std::cos(a.theta);
   return {c * std::cos(a.phi), -c * std::sin(a.phi), -std::sin(a.theta)};
-}
-
-Angles angles_from_direction(const Vec3& d) {
-  return {std::atan2(-d.y(), d.x()), std::atan2(-d.z(), std::sqrt(d.x() * d.x() + d.y() * d.y()))};
-}
-
-Vec2 erp_from_direction(const Vec3& d, int erp_width) {
-  return erp_from_angles(angles_from_direction(d), erp_width);
 }
 
 Vec3 direction_from_erp(Vec2 p, int erp_width) {
@@ -40,15 +28,6 @@ namespace {
 constexpr std::array<std::string_view, 6> kFaceNames{"front", "right", "back",
                                                      "left",  "up",    "down"};
 
-const std::array<FaceBasis, 6> kFaceBases{{
-    {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}},   // front
-    {{0, -1, 0}, {-1, 0, 0}, {0, 0, -1}},  // right
-    {{-1, 0, 0}, {0, 1, 0}, {0, 0, -1}},   // back
-    {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},    // left
-    {{0, 0, 1}, {0, -1, 0}, {1, 0, 0}},    // up
-    {{0, 0, -1}, {0, -1, 0}, {-1, 0, 0}},  // down
-}};
-
 }  // namespace
 
 std::string_view face_name(Face face) { return kFaceNames[int(face)]; }
@@ -58,8 +37,6 @@ std::optional<Face> face_from_name(std::string_view name) {
     if (face_name(face) == name) return face;
   return std::nullopt;
 }
-
-const FaceBasis& face_basis(Face face) { return kFaceBases[int(face)]; }
 
 Mat3 face_rotation(Face face) {
   const FaceBasis& b = face_basis(face);
@@ -103,11 +80,5 @@ Vec2 paper_c2e(Face face, double phi, double elevation, int face_size) {
   return {half * std::tan(local), -half * std::tan(elevation) / std::cos(local)};
 }
 
-double wrap_360(double u, int erp_width) {
-  const double W = erp_width;
-  if (u > W / 2) return u - W;
-  if (u <= -W / 2) return u + W;
-  return u;
-}
 
 }  // namespace flowscape

@@ -83,14 +83,13 @@ void require_flow_input(const Sampling& sampling, const FlowInput& in) {
   if (in.valid.data) require_source(sampling, in.valid, 1, "valid mask");
 }
 
+// A bilinear blend never leaves the range of its taps, so integers only need rounding.
 template <class T>
 T from_float(float value) {
   if constexpr (std::is_floating_point_v<T>) {
     return value;
   } else {
-    const float rounded = std::floor(value + 0.5f);
-    return T(std::clamp(rounded, float(std::numeric_limits<T>::min()),
-                        float(std::numeric_limits<T>::max())));
+    return T(value + 0.5f);
   }
 }
 
@@ -111,34 +110,32 @@ int nearest_source(const Sampling& sampling, const Stencil& st) {
 
 // One tap's flow in the plane the destination blends in, with what decides whether it may blend.
 struct TapFlow {
-  double u = 0, v = 0;
+  float u = 0, v = 0;
   std::uint16_t instance = 0;
-  std::uint8_t valid = 0;
   bool known = false;
 };
 
-TapFlow source_flow(const FlowInput& in, int index) {
+[[gnu::always_inline]] inline TapFlow source_flow(const FlowInput& in, int index) {
   const float* f = in.flow.data + 2 * std::size_t(index);
-  return {f[0],
-          f[1],
-          in.instance.data ? in.instance.data[index] : std::uint16_t(0),
-          in.valid.data ? in.valid.data[index] : std::uint8_t(1),
+  return {f[0], f[1], in.instance.data ? in.instance.data[index] : std::uint16_t(0),
           is_known_flow(f[0], f[1])};
 }
 
 // Bilinear blend of the known flows of the taps that share the nearest tap's instance.
-TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
-  const TapFlow& nearest = taps[st.nearest_tap()];
+[[gnu::always_inline]] inline TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
+  const std::uint16_t instance = taps[st.nearest_tap()].instance;
   const auto w = bilinear_weights(st);
-  TapFlow out{0, 0, nearest.instance, nearest.valid, false};
-  double total = 0;
+  float u = 0, v = 0, total = 0;
   for (int k = 0; k < 4; ++k) {
-    if (!taps[k].known || taps[k].instance != nearest.instance) continue;
-    out.u += w[k] * taps[k].u, out.v += w[k] * taps[k].v, total += w[k];
+    const float weight = taps[k].known && taps[k].instance == instance ? w[k] : 0.f;
+    u += weight * taps[k].u, v += weight * taps[k].v, total += weight;
   }
-  if (total <= 0) return out;
-  out.u /= total, out.v /= total, out.known = true;
-  return out;
+  if (total <= 0) return {0, 0, instance, false};
+  return {u / total, v / total, instance, true};
+}
+
+std::uint8_t source_valid(const Sampling& sampling, const Stencil& st, const FlowInput& in) {
+  return in.valid.data ? in.valid.data[nearest_source(sampling, st)] != 0 : 1;
 }
 
 // Flow of each apron pixel in its own face's (extended) plane: the neighbour's blended target,
@@ -159,16 +156,16 @@ std::vector<TapFlow> apron_flows(const CubeToErp& map, const FlowInput& in) {
     const Vec3 target = ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
     const auto plane = face_plane_from_direction(pixel.face, target, N);
     blended.known = plane.has_value();
-    if (plane) blended.u = plane->x() - (pixel.i + 0.5), blended.v = plane->y() - (pixel.j + 0.5);
+    if (plane) blended.u = float(plane->x() - (pixel.i + 0.5)), blended.v = float(plane->y() - (pixel.j + 0.5));
     flows[a] = blended;
   }
   return flows;
 }
 
-void write_flow_pixel(const TapFlow& blended, std::optional<Vec2> flow, float* out, std::uint8_t* valid) {
+void write_flow_pixel(std::optional<Vec2> flow, std::uint8_t source_valid, float* out, std::uint8_t* valid) {
   out[0] = flow ? float(flow->x()) : kUnknownFlow;
   out[1] = flow ? float(flow->y()) : kUnknownFlow;
-  *valid = flow && blended.valid;
+  *valid = flow && source_valid;
 }
 
 }  // namespace
@@ -176,7 +173,8 @@ void write_flow_pixel(const TapFlow& blended, std::optional<Vec2> flow, float* o
 CubeToErp make_cube_to_erp(int face_size, int erp_height) {
   require_positive_sizes(face_size, erp_height);
   const int W = 2 * erp_height, N = face_size, P = N + 2;
-  CubeToErp map{N, W, {W, erp_height, N, 6 * N, std::vector<Stencil>(std::size_t(W) * erp_height), {}}, {}};
+  CubeToErp map{N, W, {W, erp_height, N, 6 * N, std::vector<Stencil>(std::size_t(W) * erp_height), {}},
+                std::vector<std::uint8_t>(std::size_t(W) * erp_height), {}};
   // tap of every pixel of the extended faces (apron included), apron pixels numbered in order
   std::vector<std::int32_t> extended_tap(std::size_t(6) * P * P);
   for (Face face : kFaces)
@@ -195,6 +193,7 @@ CubeToErp make_cube_to_erp(int face_size, int erp_height) {
   parallel_rows(erp_height, [&](int y) {
     for (int x = 0; x < W; ++x) {
       const CubePoint p = cube_from_direction(direction_from_erp({x + 0.5, y + 0.5}, W), N);
+      map.faces[std::size_t(y) * W + x] = std::uint8_t(p.face);
       map.sampling.stencils[std::size_t(y) * W + x] = make_stencil(p.pixel, [&](int i, int j) {
         return extended_tap[(std::size_t(p.face) * P + j + 1) * P + i + 1];
       });
@@ -224,6 +223,33 @@ ErpToCube make_erp_to_cube(int erp_height, int face_size) {
   return map;
 }
 
+// Bilinear gather of one row with the channel count known at compile time (C > 0), or not (0).
+template <class T, int kChannels>
+void bilinear_row(const Sampling& sampling, ImageView<const T> src, const std::vector<float>& apron,
+                  int y, T* out) {
+  const int C = kChannels > 0 ? kChannels : src.channels;
+  const Stencil* st = &sampling.stencils[std::size_t(y) * sampling.dst_width];
+  for (int x = 0; x < sampling.dst_width; ++x, ++st, out += C) {
+    const auto w = bilinear_weights(*st);
+    if ((st->tap[0] | st->tap[1] | st->tap[2] | st->tap[3]) >= 0) {
+      const T* p[4];
+      for (int k = 0; k < 4; ++k) p[k] = src.data + std::size_t(st->tap[k]) * C;
+      for (int c = 0; c < C; ++c)
+        out[c] = from_float<T>(w[0] * p[0][c] + w[1] * p[1][c] + w[2] * p[2][c] + w[3] * p[3][c]);
+      continue;
+    }
+    for (int c = 0; c < C; ++c) {
+      float value = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int tap = st->tap[k];
+        value += w[k] * (tap >= 0 ? float(src.data[std::size_t(tap) * C + c])
+                                  : apron[std::size_t(-1 - tap) * C + c]);
+      }
+      out[c] = from_float<T>(value);
+    }
+  }
+}
+
 template <class T>
 Image<T> resample_bilinear(const Sampling& sampling, ImageView<const T> src) {
   require_source(sampling, src, 0, "source image");
@@ -231,25 +257,12 @@ Image<T> resample_bilinear(const Sampling& sampling, ImageView<const T> src) {
   std::vector<float> apron(sampling.apron.size() * C);
   for (std::size_t a = 0; a < sampling.apron.size(); ++a) blend_source(sampling.apron[a], src, &apron[a * C]);
   Image<T> out(sampling.dst_width, sampling.dst_height, C);
-  parallel_rows(sampling.dst_height, [&](int y) {
-    const Stencil* st = &sampling.stencils[std::size_t(y) * sampling.dst_width];
-    T* o = out.pixel(0, y);
-    float value[16];
-    for (int x = 0; x < sampling.dst_width; ++x, ++st, o += C) {
-      if ((st->tap[0] | st->tap[1] | st->tap[2] | st->tap[3]) >= 0) {
-        blend_source(*st, src, value);
-      } else {
-        const auto w = bilinear_weights(*st);
-        for (int c = 0; c < C; ++c) value[c] = 0;
-        for (int k = 0; k < 4; ++k) {
-          const int tap = st->tap[k];
-          for (int c = 0; c < C; ++c)
-            value[c] += w[k] * (tap >= 0 ? float(src.data[std::size_t(tap) * C + c]) : apron[std::size_t(-1 - tap) * C + c]);
-        }
-      }
-      for (int c = 0; c < C; ++c) o[c] = from_float<T>(value[c]);
-    }
-  });
+  const auto row = C == 1   ? bilinear_row<T, 1>
+                   : C == 2 ? bilinear_row<T, 2>
+                   : C == 3 ? bilinear_row<T, 3>
+                   : C == 4 ? bilinear_row<T, 4>
+                            : bilinear_row<T, 0>;
+  parallel_rows(sampling.dst_height, [&](int y) { row(sampling, src, apron, y, out.pixel(0, y)); });
   return out;
 }
 
@@ -276,36 +289,84 @@ FLOWSCAPE_RESAMPLE(std::uint16_t)
 FLOWSCAPE_RESAMPLE(float)
 #undef FLOWSCAPE_RESAMPLE
 
+// blend_flows over a stencil's taps, reading face pixels directly when no tap is an apron pixel.
+TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<TapFlow>& apron) {
+  TapFlow taps[4];
+  if ((st.tap[0] | st.tap[1] | st.tap[2] | st.tap[3]) >= 0) {
+    for (int k = 0; k < 4; ++k) taps[k] = source_flow(in, st.tap[k]);
+  } else {
+    for (int k = 0; k < 4; ++k) taps[k] = st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
+  }
+  return blend_flows(st, taps);
+}
+
+// The face bases of geometry.h are signed rig axes: axis index and sign of each vector.
+struct FaceAxes {
+  int forward, right, down;
+  double forward_sign, right_sign, down_sign;
+};
+const std::array<FaceAxes, 6> kFaceAxes = [] {
+  std::array<FaceAxes, 6> axes;
+  const auto axis = [](const Vec3& v, int& index, double& sign) {
+    v.cwiseAbs().maxCoeff(&index);
+    sign = v[index];
+  };
+  for (Face face : kFaces) {
+    const FaceBasis& b = face_basis(face);
+    FaceAxes& a = axes[int(face)];
+    axis(b.forward, a.forward, a.forward_sign);
+    axis(b.right, a.right, a.right_sign);
+    axis(b.down, a.down, a.down_sign);
+  }
+  return axes;
+}();
+
 FlowOutput cube_to_erp_flow(const CubeToErp& map, const FlowInput& cube, FlowMode mode) {
   require_flow_input(map.sampling, cube);
   const int W = map.erp_width, H = W / 2, N = map.face_size;
   const std::vector<TapFlow> apron = apron_flows(map, cube);
+  std::vector<double> cos_phi(W), sin_phi(W);
+  for (int x = 0; x < W; ++x) {
+    const double phi = angles_from_erp({x + 0.5, 0.0}, W).phi;
+    cos_phi[x] = std::cos(phi), sin_phi[x] = std::sin(phi);
+  }
+  const float pixels_per_radian = float(W / (2 * kPi));
   FlowOutput out{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)};
   parallel_rows(H, [&](int y) {
+    const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
+    const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
+    // Pass 1: the target ray t of each pixel s, as the sine and cosine parts of its longitude and
+    // latitude change (exact in double; small angles keep float relative accuracy).
+    // Pass 2, vectorised: the two angle changes. Pass 3: the flow.
+    std::vector<float> parts(4 * std::size_t(W)), angles(2 * std::size_t(W));
+    std::vector<std::uint8_t> known(W);
+    std::uint8_t* valid = out.valid.pixel(0, y);
     for (int x = 0; x < W; ++x) {
-      const Stencil& st = map.sampling.stencils[std::size_t(y) * W + x];
-      TapFlow taps[4];
-      for (int k = 0; k < 4; ++k)
-        taps[k] = st.tap[k] >= 0 ? source_flow(cube, st.tap[k]) : apron[-1 - st.tap[k]];
-      const TapFlow blended = blend_flows(st, taps);
-      std::optional<Vec2> flow;
-      if (blended.known) {
-        // sample point = tap 0's pixel centre + (fx, fy), in the extended plane of its face
-        Face face;
-        Vec2 corner;
-        if (st.tap[0] >= 0) {
-          const int local = st.tap[0] % (N * N);
-          face = Face(st.tap[0] / (N * N)), corner = {local % N, local / N};
-        } else {
-          const ApronPixel& a = map.apron_pixels[-1 - st.tap[0]];
-          face = a.face, corner = {a.i, a.j};
-        }
-        const Vec2 target_plane = corner + Vec2(0.5 + st.fx + blended.u, 0.5 + st.fy + blended.v);
-        const Vec2 e = erp_from_direction(ray_from_cube(face, target_plane, N), W);
-        const double classic_u = std::fmod(e.x(), double(W)) - (x + 0.5);
-        flow = Vec2(mode == FlowMode::Wrap360 ? wrap_360(classic_u, W) : classic_u, e.y() - (y + 0.5));
-      }
-      write_flow_pixel(blended, flow, out.flow.pixel(x, y), out.valid.pixel(x, y));
+      const std::size_t index = std::size_t(y) * W + x;
+      const Stencil& st = map.sampling.stencils[index];
+      const TapFlow blended = blend_stencil(st, cube, apron);
+      known[x] = blended.known;
+      valid[x] = blended.known && source_valid(map.sampling, st, cube);
+      // the pixel's ray s scaled onto its face plane, moved by the blended face-plane flow
+      const FaceAxes& face = kFaceAxes[map.faces[index]];
+      const double s[3] = {cos_theta * cos_phi[x], -cos_theta * sin_phi[x], -sin_theta};
+      const double scale = face.forward_sign / s[face.forward], step = 2.0 / N;
+      double t[3] = {s[0] * scale, s[1] * scale, s[2] * scale};
+      t[face.right] += face.right_sign * step * blended.u;
+      t[face.down] += face.down_sign * step * blended.v;
+      const double rho_t = std::sqrt(t[0] * t[0] + t[1] * t[1]);
+      float* a = &parts[4 * std::size_t(x)];
+      a[0] = float(t[0] * s[1] - t[1] * s[0]), a[1] = float(t[0] * s[0] + t[1] * s[1]);
+      a[2] = float(s[2] * rho_t - t[2] * cos_theta), a[3] = float(rho_t * cos_theta + t[2] * s[2]);
+    }
+    for (int x = 0; x < 2 * W; ++x) angles[x] = fast_atan2(parts[2 * x], parts[2 * x + 1]);
+    float* o = out.flow.pixel(0, y);
+    for (int x = 0; x < W; ++x) {
+      const float u = angles[2 * x] * pixels_per_radian, v = angles[2 * x + 1] * pixels_per_radian;
+      const float target = x + 0.5f + u;  // classic flow does not wrap round the seam
+      const float classic_u = target >= W ? u - W : target < 0 ? u + W : u;
+      o[2 * x] = known[x] ? (mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
+      o[2 * x + 1] = known[x] ? v : kUnknownFlow;
     }
   });
   return out;
@@ -334,7 +395,7 @@ FlowOutput erp_to_cube_flow(const ErpToCube& map, const FlowInput& erp) {
         const Vec3 target = direction_from_erp(sample + Vec2(blended.u, blended.v), W);
         if (const auto plane = face_plane_from_direction(face, target, N)) flow = *plane - centre;
       }
-      write_flow_pixel(blended, flow, out.flow.pixel(i, row), out.valid.pixel(i, row));
+      write_flow_pixel(flow, source_valid(map.sampling, st, erp), out.flow.pixel(i, row), out.valid.pixel(i, row));
     }
   });
   return out;

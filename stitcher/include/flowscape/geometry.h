@@ -9,6 +9,8 @@
 // Cube faces are 90-degree pinholes of N x N pixels (focal N/2, principal point N/2, N/2).
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
+#include <cmath>
 #include <optional>
 #include <string_view>
 
@@ -27,17 +29,60 @@ struct Angles {
   double theta;  // latitude, (-pi/2, pi/2), down-positive
 };
 
+// atan2 without branches, so that loops over it vectorise (the stitcher calls it per pixel):
+// octant reduction, atan(z) = pi/4 + atan((z - 1) / (z + 1)) above tan(pi/8), then
+// atan(z) = z P(z^2) with P a Chebyshev interpolant of atan(z)/z on [0, tan^2(pi/8)].
+template <class T, std::size_t kTerms>
+inline T reduced_atan2(T y, T x, const T (&p)[kTerms]) {
+  const T tan_pi8 = T(0.41421356237309503), pi = T(kPi);
+  const T ax = x < 0 ? -x : x, ay = y < 0 ? -y : y;
+  const T small = ax < ay ? ax : ay, large = ax < ay ? ay : ax;
+  const bool shifted = small > tan_pi8 * large;
+  const T numerator = shifted ? small - large : small;
+  const T denominator = shifted ? small + large : (large > 0 ? large : T(1));
+  const T z = numerator / denominator, z2 = z * z;
+  T series = p[kTerms - 1];
+  for (int k = int(kTerms) - 2; k >= 0; --k) series = p[k] + z2 * series;
+  T angle = z * series + (shifted ? pi / 4 : T(0));
+  angle = ay > ax ? pi / 2 - angle : angle;
+  angle = x < 0 ? pi - angle : angle;
+  return y < 0 ? -angle : angle;
+}
+
+// To within 1e-10 rad (P of degree 6, error below 1e-11).
+inline double fast_atan2(double y, double x) {
+  static constexpr double kP[7] = {0.9999999999783997,   -0.333333320976096,  0.19999883856481723,
+                                   -0.14281588769911768, 0.11040489189652566, -0.0845619267239619,
+                                   0.04707347702726853};
+  return reduced_atan2(y, x, kP);
+}
+
+// To float precision, relative to the angle (P of degree 4, relative error below 2e-8).
+inline float fast_atan2(float y, float x) {
+  static constexpr float kP[5] = {0.9999999812646111f, -0.3333278577192415f, 0.199740824154833f,
+                                  -0.13848490211930034f, 0.07976291805297275f};
+  return reduced_atan2(y, x, kP);
+}
+
 // Paper Eq. 1: x = L (phi - phi0) cos(theta1), y = L (theta - theta0).
 Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double theta0,
                        double theta1);
 
 // Eq. 1 with L = W / (2 pi), phi0 = -pi, theta0 = -pi/2, theta1 = 0 (requires W = 2H).
-Vec2 erp_from_angles(Angles a, int erp_width);
+inline Vec2 erp_from_angles(Angles a, int erp_width) {
+  const double L = erp_width / (2 * kPi);  // Eq. 1 with cos(theta1) = 1, kept inline for speed
+  return {L * (a.phi + kPi), L * (a.theta + kPi / 2)};
+}
 Angles angles_from_erp(Vec2 p, int erp_width);
 
-Vec3 direction_from_angles(Angles a);          // unit vector
-Angles angles_from_direction(const Vec3& d);   // d need not be unit length
-Vec2 erp_from_direction(const Vec3& d, int erp_width);
+Vec3 direction_from_angles(Angles a);  // unit vector
+// d need not be unit length
+inline Angles angles_from_direction(const Vec3& d) {
+  return {fast_atan2(-d.y(), d.x()), fast_atan2(-d.z(), std::sqrt(d.x() * d.x() + d.y() * d.y()))};
+}
+inline Vec2 erp_from_direction(const Vec3& d, int erp_width) {
+  return erp_from_angles(angles_from_direction(d), erp_width);
+}
 Vec3 direction_from_erp(Vec2 p, int erp_width);  // unit vector
 
 // ---- cube ------------------------------------------------------------------------------------
@@ -53,7 +98,15 @@ std::optional<Face> face_from_name(std::string_view name);
 struct FaceBasis {
   Vec3 forward, right, down;
 };
-const FaceBasis& face_basis(Face face);
+inline const std::array<FaceBasis, 6> kFaceBases{{
+    {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}},   // front
+    {{0, -1, 0}, {-1, 0, 0}, {0, 0, -1}},  // right
+    {{-1, 0, 0}, {0, 1, 0}, {0, 0, -1}},   // back
+    {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}},    // left
+    {{0, 0, 1}, {0, -1, 0}, {1, 0, 0}},    // up
+    {{0, 0, -1}, {0, -1, 0}, {-1, 0, 0}},  // down
+}};
+inline const FaceBasis& face_basis(Face face) { return kFaceBases[int(face)]; }
 // Columns right, down, forward: maps face-camera coordinates (x right, y down, z forward) to rig.
 Mat3 face_rotation(Face face);
 
@@ -80,12 +133,15 @@ Vec2 paper_c2e(Face face, double phi, double elevation, int face_size);
 enum class FlowMode { Wrap360, Classic };
 
 // Paper Eq. 3: the horizontal component the short way round, in (-W/2, W/2].
-double wrap_360(double u, int erp_width);
+inline double wrap_360(double u, int erp_width) {
+  const double W = erp_width;
+  return u > W / 2 ? u - W : u <= -W / 2 ? u + W : u;
+}
 
 // Middlebury's marker for unknown flow (any component above 1e9 means unknown).
 inline constexpr float kUnknownFlow = 1e10f;
 inline bool is_known_flow(float u, float v) {
-  return u == u && v == v && u > -1e9f && u < 1e9f && v > -1e9f && v < 1e9f;
+  return std::abs(u) < 1e9f && std::abs(v) < 1e9f;  // false for NaN too
 }
 
 }  // namespace flowscape

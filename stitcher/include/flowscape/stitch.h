@@ -46,6 +46,7 @@ struct ApronPixel {
 struct CubeToErp {
   int face_size = 0, erp_width = 0;
   Sampling sampling;
+  std::vector<std::uint8_t> faces;       // per ERP pixel: the Face its direction falls into
   std::vector<ApronPixel> apron_pixels;  // parallel to sampling.apron
 };
 CubeToErp make_cube_to_erp(int face_size, int erp_height);
