@@ -1,6 +1,5 @@
 // flowviz: a flow file (.flo, KITTI .png, .exr) -> colour-coded PNG.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <map>
 
@@ -11,8 +10,9 @@
 using namespace flowscape;
 
 int main(int argc, char** argv) {
-  CLI::App app{"Colour-code an optical-flow file (.flo, KITTI 16-bit .png, .exr) as a PNG on the "
-               "Middlebury wheel. Unknown or invalid flow is black."};
+  CLI::App app{
+      "Colour-code an optical-flow file (.flo, KITTI 16-bit .png, .exr) as a PNG on the "
+      "Middlebury wheel. Unknown or invalid flow is black."};
   std::string input, output;
   FlowVizOptions options;
   const std::map<std::string, FlowWheel> wheels{{"panoflow", FlowWheel::PanoFlow},

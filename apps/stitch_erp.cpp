@@ -1,7 +1,7 @@
 // stitch_erp: a cubemap folder (<face>/<modality>/<frame>) -> ERP files (<modality>/<frame>).
-#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,10 +30,10 @@ struct Job {
   std::string modality, file;
 };
 
-bool has_cube_file(const fsys::path& cube_dir, const std::string& modality, const std::string& file) {
+bool has_cube_file(const fsys::path& cube_dir, const std::string& modality,
+                   const std::string& file) {
   return fsys::exists(cube_file(cube_dir, Face::Front, modality, file));
 }
-
 
 std::string stem(const std::string& file) { return fsys::path(file).stem().string(); }
 
@@ -69,7 +69,8 @@ void stitch_image(const Options& o, const CubeToErp& map, const Job& job) {
 
 std::vector<Job> list_jobs(const Options& o) {
   std::set<std::string> flow_frames;
-  for (const std::string& file : cube_frame_files(o.cube_dir, "flow")) flow_frames.insert(stem(file));
+  for (const std::string& file : cube_frame_files(o.cube_dir, "flow"))
+    flow_frames.insert(stem(file));
   std::vector<Job> jobs;
   for (const std::string modality : {"color", "flow", "semantic", "instance", "depth", "valid"})
     for (const std::string& file : cube_frame_files(o.cube_dir, modality)) {
@@ -83,7 +84,8 @@ std::vector<Job> list_jobs(const Options& o) {
 int face_size_of(const fsys::path& cube_dir) {
   for (const char* modality : {"color", "semantic", "depth", "flow"})
     for (const std::string& file : cube_frame_files(cube_dir, modality)) {
-      if (std::string(modality) == "flow") return read_flow(cube_file(cube_dir, Face::Front, modality, file)).uv.width;
+      if (std::string(modality) == "flow")
+        return read_flow(cube_file(cube_dir, Face::Front, modality, file)).uv.width;
       return std::visit([](const auto& image) { return image.width; },
                         read_any_image(cube_file(cube_dir, Face::Front, modality, file)));
     }
@@ -94,7 +96,8 @@ int stitch_folder(const Options& o) {
   if (!fsys::is_directory(o.cube_dir)) throw FileError(o.cube_dir, "cubemap folder not found");
   const std::vector<Job> jobs = list_jobs(o);
   if (jobs.empty()) {
-    std::fprintf(diagnostics(), "stitch_erp: nothing to do, every output in %s exists (--force redoes it)\n",
+    std::fprintf(diagnostics(),
+                 "stitch_erp: nothing to do, every output in %s exists (--force redoes it)\n",
                  o.out_dir.c_str());
     return 0;
   }
@@ -133,37 +136,45 @@ int run_demo(Options o) {
   double worst = 0;
   const double expected = yaw_degrees / 360 * erp.uv.width;
   for (std::size_t i = 0; i < erp.uv.pixel_count(); ++i)
-    worst = std::max({worst, std::abs(erp.uv.data[2 * i] - expected), std::abs(double(erp.uv.data[2 * i + 1]))});
+    worst = std::max(
+        {worst, std::abs(erp.uv.data[2 * i] - expected), std::abs(double(erp.uv.data[2 * i + 1]))});
   std::printf("demo: %s holds a %dx%d cubemap and its %dx%d ERP stitch\n", o.demo_dir.c_str(),
               o.face_size, o.face_size, erp.uv.width, erp.uv.height);
-  std::printf("demo: a %.0f deg yaw must give u = %.4f px, v = 0 everywhere; largest error %.2e px\n",
-              yaw_degrees, expected, worst);
+  std::printf(
+      "demo: a %.0f deg yaw must give u = %.4f px, v = 0 everywhere; largest error %.2e px\n",
+      yaw_degrees, expected, worst);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Stitch a cubemap folder (<face>/<modality>/<frame>, faces front right back left up "
-               "down) into equirectangular files (<out>/<modality>/<frame>). Colour is bilinear, ids "
-               "and depth nearest, flow is re-projected per pixel."};
+  CLI::App app{
+      "Stitch a cubemap folder (<face>/<modality>/<frame>, faces front right back left up "
+      "down) into equirectangular files (<out>/<modality>/<frame>). Colour is bilinear, ids "
+      "and depth nearest, flow is re-projected per pixel."};
   Options o;
   app.add_option("cube_dir", o.cube_dir, "cubemap folder, e.g. sequences/map00_seq00/cube");
   app.add_option("-o,--out", o.out_dir, "output folder, e.g. sequences/map00_seq00/erp");
   app.add_option("--height", o.height, "ERP height H (width is 2H)")->check(CLI::Range(2, 1 << 14));
   app.add_option("--flow-mode", o.flow_mode, "360 (shortest way round, paper Eq. 3) or classic")
       ->check(CLI::IsMember({"360", "classic"}));
-  app.add_flag("--force", o.force, "redo outputs that exist (default: skip them, so reruns resume)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
-  app.add_option("--demo", o.demo_dir, "write the built-in analytic cubemap to DIR/cube and stitch it to DIR/erp");
-  app.add_option("--face-size", o.face_size, "face size of the --demo cubemap")->check(CLI::Range(2, 8192));
+  app.add_flag("--force", o.force,
+               "redo outputs that exist (default: skip them, so reruns resume)");
+  app.add_option("--threads", o.threads, "worker threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--demo", o.demo_dir,
+                 "write the built-in analytic cubemap to DIR/cube and stitch it to DIR/erp");
+  app.add_option("--face-size", o.face_size, "face size of the --demo cubemap")
+      ->check(CLI::Range(2, 8192));
   CLI11_PARSE(app, argc, argv);
   std::optional<tbb::global_control> threads;
   if (o.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, o.threads);
   try {
     if (!o.demo_dir.empty()) return run_demo(o);
     if (o.cube_dir.empty() || o.out_dir.empty()) {
-      std::fprintf(diagnostics(), "stitch_erp: give a cubemap folder and --out (or --demo DIR); see --help\n");
+      std::fprintf(diagnostics(),
+                   "stitch_erp: give a cubemap folder and --out (or --demo DIR); see --help\n");
       return 2;
     }
     return stitch_folder(o);

@@ -1,10 +1,10 @@
 #pragma once
 // Expectations derived by hand for the tests, written without the library's geometry code.
-//   Rig: x forward, y left, z up. ERP column x <-> longitude phi = 2 pi (x / W) - pi (right-positive),
-//   row y <-> latitude theta = pi (y / H) - pi / 2 (down-positive).
-//   Faces (forward, right, down): front (+x, -y, -z), right (-y, -x, -z), back (-x, +y, -z),
-//   left (+y, +x, -z), up (+z, -y, +x), down (-z, -y, -x). Pixel (i, j) of an N x N face looks along
-//   forward + a right + b down with a = 2 (i + 0.5) / N - 1, b = 2 (j + 0.5) / N - 1.
+//   Rig: x forward, y left, z up. ERP column x <-> longitude phi = 2 pi (x / W) - pi
+//   (right-positive), row y <-> latitude theta = pi (y / H) - pi / 2 (down-positive). Faces
+//   (forward, right, down): front (+x, -y, -z), right (-y, -x, -z), back (-x, +y, -z), left (+y,
+//   +x, -z), up (+z, -y, +x), down (-z, -y, -x). Pixel (i, j) of an N x N face looks along forward
+//   + a right + b down with a = 2 (i + 0.5) / N - 1, b = 2 (j + 0.5) / N - 1.
 #include <array>
 #include <cmath>
 
@@ -66,9 +66,9 @@ inline FaceHit face_hit(V3 d, int N) {
 
 // Pinhole flow on face `face` at normalised coordinates (a, b) when the camera yaws left by psi.
 // Horizontal faces: the horizontal angle alpha = atan(a) grows by psi, the elevation stays, so
-// a' = tan(alpha + psi) and b' = b cos(alpha) / cos(alpha + psi). Up and down faces: the image turns
-// about its centre by psi (clockwise on up, counter-clockwise on down, seen in image coordinates).
-// Returns the flow in pixels of an N x N face.
+// a' = tan(alpha + psi) and b' = b cos(alpha) / cos(alpha + psi). Up and down faces: the image
+// turns about its centre by psi (clockwise on up, counter-clockwise on down, seen in image
+// coordinates). Returns the flow in pixels of an N x N face.
 inline std::array<double, 2> yaw_face_flow(int face, double a, double b, double psi, int N) {
   double a2, b2;
   if (face < 4) {
@@ -89,9 +89,12 @@ inline std::array<double, 2> yaw_face_flow(int face, double a, double b, double 
 inline double pattern(V3 d, int c) {
   d = (1 / std::sqrt(dot(d, d))) * d;
   switch (c) {
-    case 0: return 127.5 + 90 * std::sin(2.5 * d.x + 1.5 * d.y - d.z);
-    case 1: return 127.5 + 90 * std::cos(3 * d.y + 2 * d.z);
-    default: return 127.5 + 60 * std::sin(2 * d.x + d.y) + 30 * d.z;
+    case 0:
+      return 127.5 + 90 * std::sin(2.5 * d.x + 1.5 * d.y - d.z);
+    case 1:
+      return 127.5 + 90 * std::cos(3 * d.y + 2 * d.z);
+    default:
+      return 127.5 + 60 * std::sin(2 * d.x + d.y) + 30 * d.z;
   }
 }
 

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -55,7 +54,8 @@ TEST_CASE("flow files written by independent numpy code read back identically") 
       const bool valid = reference_valid(x, y);
       differences += *kitti.valid.pixel(x, y) != valid;
       if (valid)
-        differences += kitti.uv.pixel(x, y)[0] != reference_u(x, y) || kitti.uv.pixel(x, y)[1] != reference_v(x, y);
+        differences += kitti.uv.pixel(x, y)[0] != reference_u(x, y) ||
+                       kitti.uv.pixel(x, y)[1] != reference_v(x, y);
     }
   CHECK(differences == 0);
 }
@@ -107,8 +107,10 @@ TEST_CASE("flow that a format cannot hold is refused and nothing is written") {
   TempDir dir;
   Image<float> uv(4, 3, 2, 1.f);
   uv.pixel(2, 1)[1] = std::nanf("");
-  CHECK_THROWS_WITH(write_flow(dir.path / "nan.flo", uv.view()), Catch::Contains("NaN at pixel (2, 1)"));
+  CHECK_THROWS_WITH(write_flow(dir.path / "nan.flo", uv.view()),
+                    Catch::Contains("NaN at pixel (2, 1)"));
   uv.pixel(2, 1)[1] = 600;  // KITTI PNG holds +-512 px
-  CHECK_THROWS_WITH(write_flow(dir.path / "big.png", uv.view()), Catch::Contains("exceeds the KITTI"));
+  CHECK_THROWS_WITH(write_flow(dir.path / "big.png", uv.view()),
+                    Catch::Contains("exceeds the KITTI"));
   CHECK(fsys::is_empty(dir.path));
 }

@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <array>
+#include <catch2/catch.hpp>
 
 #include "flowscape/flow_viz.h"
 
@@ -40,11 +39,16 @@ TEST_CASE("flow_to_color scales, and draws unknown and invalid flow black") {
   uv.pixel(1, 0)[0] = 1e10f;
   uv.pixel(2, 0)[0] = -2;
   Image<std::uint8_t> valid(3, 1, 1, 1);
-  const Image<std::uint8_t> rgb = flow_to_color(uv.view(), valid.view(), {FlowWheel::Middlebury, 0});
-  CHECK(std::array<int, 3>{rgb.pixel(0, 0)[0], rgb.pixel(0, 0)[1], rgb.pixel(0, 0)[2]} == std::array<int, 3>{0, 209, 255});
-  CHECK(std::array<int, 3>{rgb.pixel(1, 0)[0], rgb.pixel(1, 0)[1], rgb.pixel(1, 0)[2]} == std::array<int, 3>{0, 0, 0});
-  CHECK(std::array<int, 3>{rgb.pixel(2, 0)[0], rgb.pixel(2, 0)[1], rgb.pixel(2, 0)[2]} == std::array<int, 3>{128, 232, 255});
+  const Image<std::uint8_t> rgb =
+      flow_to_color(uv.view(), valid.view(), {FlowWheel::Middlebury, 0});
+  CHECK(std::array<int, 3>{rgb.pixel(0, 0)[0], rgb.pixel(0, 0)[1], rgb.pixel(0, 0)[2]} ==
+        std::array<int, 3>{0, 209, 255});
+  CHECK(std::array<int, 3>{rgb.pixel(1, 0)[0], rgb.pixel(1, 0)[1], rgb.pixel(1, 0)[2]} ==
+        std::array<int, 3>{0, 0, 0});
+  CHECK(std::array<int, 3>{rgb.pixel(2, 0)[0], rgb.pixel(2, 0)[1], rgb.pixel(2, 0)[2]} ==
+        std::array<int, 3>{128, 232, 255});
   *valid.pixel(0, 0) = 0;
-  const Image<std::uint8_t> masked = flow_to_color(uv.view(), valid.view(), {FlowWheel::Middlebury, 4});
+  const Image<std::uint8_t> masked =
+      flow_to_color(uv.view(), valid.view(), {FlowWheel::Middlebury, 4});
   CHECK(masked.pixel(0, 0)[1] == 0);
 }

@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "flowscape/geometry.h"
@@ -62,11 +61,15 @@ TEST_CASE("cube faces have the hand-derived axes, are right-handed and meet edge
   }
   // the lower edge of "up" and the upper edge of "down" are the edges of "front"
   for (double s : {0.0, 20.0, 64.0}) {
-    CHECK((ray_from_cube(Face::Up, {s, N}, N) - ray_from_cube(Face::Front, {s, 0}, N)).norm() < 1e-12);
-    CHECK((ray_from_cube(Face::Down, {s, 0}, N) - ray_from_cube(Face::Front, {s, N}, N)).norm() < 1e-12);
+    CHECK((ray_from_cube(Face::Up, {s, N}, N) - ray_from_cube(Face::Front, {s, 0}, N)).norm() <
+          1e-12);
+    CHECK((ray_from_cube(Face::Down, {s, 0}, N) - ray_from_cube(Face::Front, {s, N}, N)).norm() <
+          1e-12);
     // right edge of front = left edge of right, and so on round the rig
-    CHECK((ray_from_cube(Face::Front, {N, s}, N) - ray_from_cube(Face::Right, {0, s}, N)).norm() < 1e-12);
-    CHECK((ray_from_cube(Face::Left, {N, s}, N) - ray_from_cube(Face::Front, {0, s}, N)).norm() < 1e-12);
+    CHECK((ray_from_cube(Face::Front, {N, s}, N) - ray_from_cube(Face::Right, {0, s}, N)).norm() <
+          1e-12);
+    CHECK((ray_from_cube(Face::Left, {N, s}, N) - ray_from_cube(Face::Front, {0, s}, N)).norm() <
+          1e-12);
   }
 }
 
@@ -116,7 +119,7 @@ TEST_CASE("fast_atan2 agrees with std::atan2 to 1e-10 rad in every octant") {
     const double y = radius * std::sin(angle), x = radius * std::cos(angle);
     worst = std::max(worst, std::abs(fast_atan2(y, x) - std::atan2(y, x)));
   }
-  CHECK(worst < 1e-10);  // the series alone is good to 1e-11
+  CHECK(worst < 1e-10);                         // the series alone is good to 1e-11
   CHECK(fast_atan2(0.0, -1.0) == Approx(kPi));  // the seam belongs to +pi
   CHECK(fast_atan2(0.0, 0.0) == 0);
   CHECK(fast_atan2(-1.0, 0.0) == Approx(-kPi / 2));

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -29,7 +28,8 @@ Image<std::uint8_t> pattern_cube(int N) {
 
 Image<float> yaw_cube_flow(int N, double psi) {
   return make_cube<float>(N, 2, [N, psi](int face, int i, int j, float* f) {
-    const auto uv = indep::yaw_face_flow(face, 2 * (i + 0.5) / N - 1, 2 * (j + 0.5) / N - 1, psi, N);
+    const auto uv =
+        indep::yaw_face_flow(face, 2 * (i + 0.5) / N - 1, 2 * (j + 0.5) / N - 1, psi, N);
     f[0] = float(uv[0]);
     f[1] = float(uv[1]);
   });
@@ -38,9 +38,7 @@ Image<float> yaw_cube_flow(int N, double psi) {
 struct ErrorStats {
   double sum = 0, worst = 0;
   long count = 0;
-  void add(double e) {
-    sum += std::abs(e), worst = std::max(worst, std::abs(e)), ++count;
-  }
+  void add(double e) { sum += std::abs(e), worst = std::max(worst, std::abs(e)), ++count; }
   double mean() const { return count ? sum / count : 0; }
 };
 
@@ -68,7 +66,9 @@ TEST_CASE("a pure camera yaw gives ERP flow u = a/360 W, v = 0 everywhere, acros
         CHECK(*erp.valid.pixel(x, y) == 1);
         // classic flow does not wrap: a target past the seam lands at x + u - W (or + W)
         const double target = x + 0.5 + expected;
-        const double classic_expected = target >= W ? expected - W : target < 0 ? expected + W : expected;
+        const double classic_expected = target >= W  ? expected - W
+                                        : target < 0 ? expected + W
+                                                     : expected;
         classic_error.add(classic.flow.pixel(x, y)[0] - classic_expected);
       }
     CHECK(u_error.worst < 2e-3);  // the rows next to a pole amplify angles most
@@ -79,7 +79,8 @@ TEST_CASE("a pure camera yaw gives ERP flow u = a/360 W, v = 0 everywhere, acros
 
 TEST_CASE("a cubemap rendered from an analytic pattern stitches back within 1 intensity level") {
   const int N = 256, H = 256, W = 2 * H;
-  const Image<std::uint8_t> erp = resample_bilinear(make_cube_to_erp(N, H).sampling, pattern_cube(N));
+  const Image<std::uint8_t> erp =
+      resample_bilinear(make_cube_to_erp(N, H).sampling, pattern_cube(N));
   REQUIRE(erp.width == W);
   REQUIRE(erp.height == H);
   REQUIRE(erp.channels == 3);
@@ -87,7 +88,8 @@ TEST_CASE("a cubemap rendered from an analytic pattern stitches back within 1 in
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double e = erp.pixel(x, y)[c] - indep::pattern(indep::erp_direction(x + 0.5, y + 0.5, W), c);
+        const double e =
+            erp.pixel(x, y)[c] - indep::pattern(indep::erp_direction(x + 0.5, y + 0.5, W), c);
         all.add(e);
         if (near_face_edge(x, y, W, N)) seams.add(e);
       }
@@ -103,7 +105,8 @@ TEST_CASE("ERP -> cube -> ERP round trip keeps colour and flow") {
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x)
       for (int c = 0; c < 3; ++c)
-        erp.pixel(x, y)[c] = std::uint8_t(std::lround(indep::pattern(indep::erp_direction(x + 0.5, y + 0.5, W), c)));
+        erp.pixel(x, y)[c] =
+            std::uint8_t(std::lround(indep::pattern(indep::erp_direction(x + 0.5, y + 0.5, W), c)));
   const ErpToCube to_cube = make_erp_to_cube(H, N);
   const CubeToErp to_erp = make_cube_to_erp(N, H);
 
@@ -112,12 +115,15 @@ TEST_CASE("ERP -> cube -> ERP round trip keeps colour and flow") {
   for (int row = 0; row < 6 * N; ++row)
     for (int i = 0; i < N; ++i)
       for (int c = 0; c < 3; ++c)
-        cube_error.add(cube.pixel(i, row)[c] - indep::pattern(indep::face_direction(row / N, i + 0.5, row % N + 0.5, N), c));
+        cube_error.add(
+            cube.pixel(i, row)[c] -
+            indep::pattern(indep::face_direction(row / N, i + 0.5, row % N + 0.5, N), c));
   CHECK(cube_error.mean() < 1.0);
 
   const Image<std::uint8_t> back = resample_bilinear(to_erp.sampling, cube);
   ErrorStats round_trip;
-  for (std::size_t k = 0; k < back.data.size(); ++k) round_trip.add(double(back.data[k]) - erp.data[k]);
+  for (std::size_t k = 0; k < back.data.size(); ++k)
+    round_trip.add(double(back.data[k]) - erp.data[k]);
   CHECK(round_trip.mean() < 1.0);
 
   const double psi = 4 * indep::pi / 180, u = psi / (2 * indep::pi) * W;
@@ -127,7 +133,8 @@ TEST_CASE("ERP -> cube -> ERP round trip keeps colour and flow") {
   ErrorStats face_error;
   for (int row = 0; row < 6 * N; ++row)
     for (int i = 0; i < N; ++i) {
-      const auto expected = indep::yaw_face_flow(row / N, 2 * (i + 0.5) / N - 1, 2 * (row % N + 0.5) / N - 1, psi, N);
+      const auto expected =
+          indep::yaw_face_flow(row / N, 2 * (i + 0.5) / N - 1, 2 * (row % N + 0.5) / N - 1, psi, N);
       face_error.add(cube_flow.flow.pixel(i, row)[0] - expected[0]);
       face_error.add(cube_flow.flow.pixel(i, row)[1] - expected[1]);
     }
@@ -144,15 +151,17 @@ TEST_CASE("ERP -> cube -> ERP round trip keeps colour and flow") {
 TEST_CASE("ids are sampled nearest and never mixed") {
   const int N = 64, H = 128, W = 2 * H;
   // every face pixel its own id: an output id names the one source pixel it came from
-  const Image<std::uint16_t> ids = make_cube<std::uint16_t>(N, 1, [N](int face, int i, int j, std::uint16_t* p) {
-    *p = std::uint16_t((face * N + j) * N + i);
-  });
+  const Image<std::uint16_t> ids =
+      make_cube<std::uint16_t>(N, 1, [N](int face, int i, int j, std::uint16_t* p) {
+        *p = std::uint16_t((face * N + j) * N + i);
+      });
   const Image<std::uint16_t> erp = resample_nearest(make_cube_to_erp(N, H).sampling, ids);
   int mismatches = 0;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const indep::FaceHit hit = indep::face_hit(indep::erp_direction(x + 0.5, y + 0.5, W), N);
-      const int expected = (hit.face * N + std::min(int(hit.t), N - 1)) * N + std::min(int(hit.s), N - 1);
+      const int expected =
+          (hit.face * N + std::min(int(hit.t), N - 1)) * N + std::min(int(hit.s), N - 1);
       mismatches += *erp.pixel(x, y) != expected;
     }
   CHECK(mismatches == 0);
@@ -179,18 +188,20 @@ TEST_CASE("flow is blended only between taps of one instance") {
     f[0] = i < N / 2 ? -2.f : 2.f;
     f[1] = 0;
   });
-  const Image<std::uint16_t> instance = make_cube<std::uint16_t>(N, 1, [N](int, int i, int, std::uint16_t* p) {
-    *p = i < N / 2 ? 1 : 2;
-  });
+  const Image<std::uint16_t> instance = make_cube<std::uint16_t>(
+      N, 1, [N](int, int i, int, std::uint16_t* p) { *p = i < N / 2 ? 1 : 2; });
   const CubeToErp map = make_cube_to_erp(N, H);
-  const FlowOutput separated = cube_to_erp_flow(map, {flow.view(), instance.view()}, FlowMode::Wrap360);
+  const FlowOutput separated =
+      cube_to_erp_flow(map, {flow.view(), instance.view()}, FlowMode::Wrap360);
   const FlowOutput blended = cube_to_erp_flow(map, {flow.view()}, FlowMode::Wrap360);
   // at the face centre one face pixel spans (2 / N) / (2 pi / W) ERP pixels
   const double expected = 2 * (2.0 / N) / (2 * indep::pi / W);
   double smallest_separated = 1e9, smallest_blended = 1e9;
   for (int x = W / 2 - 8; x < W / 2 + 8; ++x) {  // across the front face's middle column
-    smallest_separated = std::min(smallest_separated, double(std::abs(separated.flow.pixel(x, H / 2)[0])));
-    smallest_blended = std::min(smallest_blended, double(std::abs(blended.flow.pixel(x, H / 2)[0])));
+    smallest_separated =
+        std::min(smallest_separated, double(std::abs(separated.flow.pixel(x, H / 2)[0])));
+    smallest_blended =
+        std::min(smallest_blended, double(std::abs(blended.flow.pixel(x, H / 2)[0])));
   }
   CHECK(smallest_separated > 0.95 * expected);  // each pixel moves with its own object
   CHECK(smallest_blended < 0.25 * expected);    // without instances the taps average out
@@ -205,7 +216,8 @@ TEST_CASE("unknown face flow stays unknown and invalid sources stay invalid") {
       flow.pixel(i, row)[0] = flow.pixel(i, row)[1] = kUnknownFlow;
       *valid.pixel(i, 2 * N + row) = 0;
     }
-  const FlowOutput erp = cube_to_erp_flow(make_cube_to_erp(N, H), {flow.view(), {}, valid.view()}, FlowMode::Wrap360);
+  const FlowOutput erp =
+      cube_to_erp_flow(make_cube_to_erp(N, H), {flow.view(), {}, valid.view()}, FlowMode::Wrap360);
   const float* front = erp.flow.pixel(H, H / 2);
   CHECK(front[0] == kUnknownFlow);
   CHECK(*erp.valid.pixel(H, H / 2) == 0);

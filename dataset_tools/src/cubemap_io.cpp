@@ -99,10 +99,10 @@ std::vector<std::string> cube_frame_files(const std::filesystem::path& cube_dir,
   return names;
 }
 
-#define FLOWSCAPE_CUBE_IO(T)                                                                     \
-  template Image<T> read_cube_image_as(const std::filesystem::path&, const std::string&,         \
-                                       const std::string&);                                      \
-  template void write_cube_image(const std::filesystem::path&, const std::string&,               \
+#define FLOWSCAPE_CUBE_IO(T)                                                             \
+  template Image<T> read_cube_image_as(const std::filesystem::path&, const std::string&, \
+                                       const std::string&);                              \
+  template void write_cube_image(const std::filesystem::path&, const std::string&,       \
                                  const std::string&, ImageView<const T>);
 FLOWSCAPE_CUBE_IO(std::uint8_t)
 FLOWSCAPE_CUBE_IO(std::uint16_t)

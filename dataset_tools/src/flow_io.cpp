@@ -18,7 +18,9 @@ constexpr float kFloMagic = 202021.25f;
 constexpr int kMaxSide = 1 << 16;
 constexpr double kKittiScale = 64.0, kKittiOffset = 32768.0;
 
-std::string at(int x, int y) { return " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")"; }
+std::string at(int x, int y) {
+  return " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+}
 
 void require_flow_image(const std::filesystem::path& path, ImageView<const float> uv) {
   if (uv.width <= 0 || uv.height <= 0 || uv.channels != 2 || !uv.data)
@@ -26,7 +28,8 @@ void require_flow_image(const std::filesystem::path& path, ImageView<const float
   for (int y = 0; y < uv.height; ++y)
     for (int x = 0; x < uv.width; ++x)
       for (int c = 0; c < 2; ++c)
-        if (std::isnan(uv.pixel(x, y)[c])) throw FileError(path, "flow to write holds NaN" + at(x, y));
+        if (std::isnan(uv.pixel(x, y)[c]))
+          throw FileError(path, "flow to write holds NaN" + at(x, y));
 }
 
 void require_valid_image(const std::filesystem::path& path, ImageView<const float> uv,
@@ -89,7 +92,8 @@ void write_flo(const std::filesystem::path& path, ImageView<const float> uv) {
 
 Flow read_kitti_png(const std::filesystem::path& path) {
   const Image<std::uint16_t> png = read_image<std::uint16_t>(path);
-  if (png.channels != 3) throw FileError(path, "KITTI flow PNG needs 3 channels, has " + std::to_string(png.channels));
+  if (png.channels != 3)
+    throw FileError(path, "KITTI flow PNG needs 3 channels, has " + std::to_string(png.channels));
   Flow flow{Image<float>(png.width, png.height, 2), Image<std::uint8_t>(png.width, png.height, 1)};
   for (int y = 0; y < png.height; ++y)
     for (int x = 0; x < png.width; ++x) {
@@ -127,7 +131,8 @@ void write_kitti_png(const std::filesystem::path& path, ImageView<const float> u
 
 Flow read_flow_exr(const std::filesystem::path& path) {
   Image<float> exr = read_image<float>(path);
-  if (exr.channels < 2) throw FileError(path, "flow EXR needs 2 channels (u, v), has " + std::to_string(exr.channels));
+  if (exr.channels < 2)
+    throw FileError(path, "flow EXR needs 2 channels (u, v), has " + std::to_string(exr.channels));
   Image<float> uv(exr.width, exr.height, 2);
   for (std::size_t i = 0; i < uv.pixel_count(); ++i) {
     uv.data[2 * i] = exr.data[i * exr.channels];

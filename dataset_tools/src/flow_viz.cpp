@@ -19,7 +19,7 @@ std::vector<std::array<double, 3>> make_wheel() {
     bool rising;
     int full_channel;
   };
-  const Segment segments[6] = {{15, 1, true, 0},  {6, 0, false, 1},  {4, 2, true, 1},
+  const Segment segments[6] = {{15, 1, true, 0},  {6, 0, false, 1}, {4, 2, true, 1},
                                {11, 1, false, 2}, {13, 0, true, 2}, {6, 2, false, 0}};
   std::vector<std::array<double, 3>> wheel;
   for (const Segment& s : segments)
@@ -51,7 +51,8 @@ double auto_scale(ImageView<const float> uv, ImageView<const std::uint8_t> valid
         magnitudes.push_back(std::hypot(f[0], f[1]));
     }
   if (magnitudes.empty()) return 1;
-  const std::size_t rank = wheel == FlowWheel::Middlebury ? magnitudes.size() - 1 : magnitudes.size() * 9 / 10;
+  const std::size_t rank =
+      wheel == FlowWheel::Middlebury ? magnitudes.size() - 1 : magnitudes.size() * 9 / 10;
   std::nth_element(magnitudes.begin(), magnitudes.begin() + rank, magnitudes.end());
   return std::max(magnitudes[rank], 1e-9);
 }

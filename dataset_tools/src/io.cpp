@@ -1,7 +1,6 @@
 #include "flowscape/io.h"
 
 #include <OpenImageIO/imageio.h>
-
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -123,8 +122,8 @@ Image<T> read_image(const std::filesystem::path& path) {
                           format.basetype == OIIO::TypeDesc::DOUBLE;
   const bool matches = std::is_same_v<T, float> ? float_like : format == type_of<T>();
   if (!matches)
-    throw FileError(path, "stores " + describe(format) + " pixels, expected " +
-                              describe(type_of<T>()));
+    throw FileError(path,
+                    "stores " + describe(format) + " pixels, expected " + describe(type_of<T>()));
   return read_pixels<T>(*in, path);
 }
 

@@ -17,8 +17,8 @@ void synthetic_color(const Vec3& d, std::uint8_t rgb[3]) {
 
 SyntheticCubemap make_yaw_cubemap(int face_size, double yaw_degrees) {
   const int N = face_size;
-  SyntheticCubemap cube{Image<std::uint8_t>(N, 6 * N, 3), Image<std::uint8_t>(N, 6 * N, 3),
-                        Image<float>(N, 6 * N, 2),        Image<std::uint8_t>(N, 6 * N, 1),
+  SyntheticCubemap cube{Image<std::uint8_t>(N, 6 * N, 3),  Image<std::uint8_t>(N, 6 * N, 3),
+                        Image<float>(N, 6 * N, 2),         Image<std::uint8_t>(N, 6 * N, 1),
                         Image<std::uint16_t>(N, 6 * N, 1), Image<float>(N, 6 * N, 1, 100.f),
                         Image<std::uint8_t>(N, 6 * N, 1)};
   // Frame 1 sees world direction yaw * d; a world point seen at d in frame 0 is at yaw^T * d.

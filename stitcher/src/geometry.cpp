@@ -80,5 +80,4 @@ Vec2 paper_c2e(Face face, double phi, double elevation, int face_size) {
   return {half * std::tan(local), -half * std::tan(elevation) / std::cos(local)};
 }
 
-
 }  // namespace flowscape

@@ -98,7 +98,8 @@ void blend_source(const Stencil& st, ImageView<const T> src, float* out) {
   const auto w = bilinear_weights(st);
   for (int c = 0; c < src.channels; ++c) {
     out[c] = 0;
-    for (int k = 0; k < 4; ++k) out[c] += w[k] * src.data[std::size_t(st.tap[k]) * src.channels + c];
+    for (int k = 0; k < 4; ++k)
+      out[c] += w[k] * src.data[std::size_t(st.tap[k]) * src.channels + c];
   }
 }
 
@@ -115,14 +116,14 @@ struct TapFlow {
   bool known = false;
 };
 
-[[gnu::always_inline]] inline TapFlow source_flow(const FlowInput& in, int index) {
+TapFlow source_flow(const FlowInput& in, int index) {
   const float* f = in.flow.data + 2 * std::size_t(index);
   return {f[0], f[1], in.instance.data ? in.instance.data[index] : std::uint16_t(0),
           is_known_flow(f[0], f[1])};
 }
 
 // Bilinear blend of the known flows of the taps that share the nearest tap's instance.
-[[gnu::always_inline]] inline TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
+TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
   const std::uint16_t instance = taps[st.nearest_tap()].instance;
   const auto w = bilinear_weights(st);
   float u = 0, v = 0, total = 0;
@@ -153,16 +154,20 @@ std::vector<TapFlow> apron_flows(const CubeToErp& map, const FlowInput& in) {
       flows[a] = blended;
       continue;
     }
-    const Vec3 target = ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
+    const Vec3 target =
+        ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
     const auto plane = face_plane_from_direction(pixel.face, target, N);
     blended.known = plane.has_value();
-    if (plane) blended.u = float(plane->x() - (pixel.i + 0.5)), blended.v = float(plane->y() - (pixel.j + 0.5));
+    if (plane)
+      blended.u = float(plane->x() - (pixel.i + 0.5)),
+      blended.v = float(plane->y() - (pixel.j + 0.5));
     flows[a] = blended;
   }
   return flows;
 }
 
-void write_flow_pixel(std::optional<Vec2> flow, std::uint8_t source_valid, float* out, std::uint8_t* valid) {
+void write_flow_pixel(std::optional<Vec2> flow, std::uint8_t source_valid, float* out,
+                      std::uint8_t* valid) {
   out[0] = flow ? float(flow->x()) : kUnknownFlow;
   out[1] = flow ? float(flow->y()) : kUnknownFlow;
   *valid = flow && source_valid;
@@ -173,8 +178,11 @@ void write_flow_pixel(std::optional<Vec2> flow, std::uint8_t source_valid, float
 CubeToErp make_cube_to_erp(int face_size, int erp_height) {
   require_positive_sizes(face_size, erp_height);
   const int W = 2 * erp_height, N = face_size, P = N + 2;
-  CubeToErp map{N, W, {W, erp_height, N, 6 * N, std::vector<Stencil>(std::size_t(W) * erp_height), {}},
-                std::vector<std::uint8_t>(std::size_t(W) * erp_height), {}};
+  CubeToErp map{N,
+                W,
+                {W, erp_height, N, 6 * N, std::vector<Stencil>(std::size_t(W) * erp_height), {}},
+                std::vector<std::uint8_t>(std::size_t(W) * erp_height),
+                {}};
   // tap of every pixel of the extended faces (apron included), apron pixels numbered in order
   std::vector<std::int32_t> extended_tap(std::size_t(6) * P * P);
   for (Face face : kFaces)
@@ -205,7 +213,9 @@ CubeToErp make_cube_to_erp(int face_size, int erp_height) {
 ErpToCube make_erp_to_cube(int erp_height, int face_size) {
   require_positive_sizes(face_size, erp_height);
   const int W = 2 * erp_height, N = face_size;
-  ErpToCube map{W, N, {N, 6 * N, W, erp_height, std::vector<Stencil>(std::size_t(N) * 6 * N), {}},
+  ErpToCube map{W,
+                N,
+                {N, 6 * N, W, erp_height, std::vector<Stencil>(std::size_t(N) * 6 * N), {}},
                 std::vector<std::uint8_t>(std::size_t(N) * 6 * N)};
   parallel_rows(6 * N, [&](int row) {
     for (int i = 0; i < N; ++i) {
@@ -255,7 +265,8 @@ Image<T> resample_bilinear(const Sampling& sampling, ImageView<const T> src) {
   require_source(sampling, src, 0, "source image");
   const int C = src.channels;
   std::vector<float> apron(sampling.apron.size() * C);
-  for (std::size_t a = 0; a < sampling.apron.size(); ++a) blend_source(sampling.apron[a], src, &apron[a * C]);
+  for (std::size_t a = 0; a < sampling.apron.size(); ++a)
+    blend_source(sampling.apron[a], src, &apron[a * C]);
   Image<T> out(sampling.dst_width, sampling.dst_height, C);
   const auto row = C == 1   ? bilinear_row<T, 1>
                    : C == 2 ? bilinear_row<T, 2>
@@ -281,7 +292,7 @@ Image<T> resample_nearest(const Sampling& sampling, ImageView<const T> src) {
   return out;
 }
 
-#define FLOWSCAPE_RESAMPLE(T)                                                  \
+#define FLOWSCAPE_RESAMPLE(T)                                               \
   template Image<T> resample_bilinear(const Sampling&, ImageView<const T>); \
   template Image<T> resample_nearest(const Sampling&, ImageView<const T>);
 FLOWSCAPE_RESAMPLE(std::uint8_t)
@@ -289,14 +300,29 @@ FLOWSCAPE_RESAMPLE(std::uint16_t)
 FLOWSCAPE_RESAMPLE(float)
 #undef FLOWSCAPE_RESAMPLE
 
-// blend_flows over a stencil's taps, reading face pixels directly when no tap is an apron pixel.
-TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<TapFlow>& apron) {
-  TapFlow taps[4];
-  if ((st.tap[0] | st.tap[1] | st.tap[2] | st.tap[3]) >= 0) {
-    for (int k = 0; k < 4; ++k) taps[k] = source_flow(in, st.tap[k]);
-  } else {
-    for (int k = 0; k < 4; ++k) taps[k] = st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
+// blend_flows for a stencil whose taps are all face pixels, written out for speed.
+template <bool kInstances>
+TapFlow blend_face_taps(const Stencil& st, const FlowInput& in) {
+  const auto w = bilinear_weights(st);
+  const std::uint16_t instance = kInstances ? in.instance.data[st.tap[st.nearest_tap()]] : 0;
+  float u = 0, v = 0, total = 0;
+  for (int k = 0; k < 4; ++k) {
+    const float* f = in.flow.data + 2 * std::size_t(st.tap[k]);
+    const bool usable =
+        is_known_flow(f[0], f[1]) && (!kInstances || in.instance.data[st.tap[k]] == instance);
+    const float weight = usable ? w[k] : 0.f;
+    u += weight * f[0], v += weight * f[1], total += weight;
   }
+  if (total <= 0) return {0, 0, instance, false};
+  return {u / total, v / total, instance, true};
+}
+
+TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<TapFlow>& apron) {
+  if ((st.tap[0] | st.tap[1] | st.tap[2] | st.tap[3]) >= 0)
+    return in.instance.data ? blend_face_taps<true>(st, in) : blend_face_taps<false>(st, in);
+  TapFlow taps[4];
+  for (int k = 0; k < 4; ++k)
+    taps[k] = st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
   return blend_flows(st, taps);
 }
 
@@ -321,54 +347,81 @@ const std::array<FaceAxes, 6> kFaceAxes = [] {
   return axes;
 }();
 
+// A stencil's taps lie on two face rows far apart in memory; asking for their cache lines a few
+// pixels ahead hides most of the wait.
+constexpr int kPrefetchDistance = 16;
+void prefetch_taps(const Stencil& st, const FlowInput& in) {
+  for (int k : {0, 2}) {
+    const std::size_t tap = std::size_t(std::max(0, st.tap[k]));
+    __builtin_prefetch(in.flow.data + 2 * tap);
+    if (in.instance.data) __builtin_prefetch(in.instance.data + tap);
+    if (in.valid.data) __builtin_prefetch(in.valid.data + tap);
+  }
+}
+
+// What every row of cube_to_erp_flow shares.
+struct FlowRows {
+  const CubeToErp& map;
+  const FlowInput& cube;
+  FlowMode mode;
+  std::vector<TapFlow> apron;
+  std::vector<double> cos_phi, sin_phi;  // per ERP column
+  FlowOutput& out;
+};
+
+// One ERP row. Pass 1: the target ray t of each pixel s, as the sine and cosine parts of its
+// longitude and latitude change (exact in double; small angles keep float relative accuracy).
+// Pass 2, vectorised: the two angle changes. Pass 3: the flow.
+void flow_row(const FlowRows& rows, int y) {
+  const int W = rows.map.erp_width, N = rows.map.face_size;
+  const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
+  const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
+  thread_local std::vector<float> parts, angles;
+  thread_local std::vector<std::uint8_t> known;
+  parts.resize(4 * std::size_t(W)), angles.resize(2 * std::size_t(W)), known.resize(W);
+  std::uint8_t* valid = rows.out.valid.pixel(0, y);
+  for (int x = 0; x < W; ++x) {
+    const std::size_t index = std::size_t(y) * W + x;
+    const Stencil& st = rows.map.sampling.stencils[index];
+    if (x + kPrefetchDistance < W) prefetch_taps((&st)[kPrefetchDistance], rows.cube);
+    const TapFlow blended = blend_stencil(st, rows.cube, rows.apron);
+    known[x] = blended.known;
+    valid[x] = blended.known && source_valid(rows.map.sampling, st, rows.cube);
+    // the pixel's ray s scaled onto its face plane, moved by the blended face-plane flow
+    const FaceAxes& face = kFaceAxes[rows.map.faces[index]];
+    const double s[3] = {cos_theta * rows.cos_phi[x], -cos_theta * rows.sin_phi[x], -sin_theta};
+    const double scale = face.forward_sign / s[face.forward], step = 2.0 / N;
+    double t[3] = {s[0] * scale, s[1] * scale, s[2] * scale};
+    t[face.right] += face.right_sign * step * blended.u;
+    t[face.down] += face.down_sign * step * blended.v;
+    const double rho_t = std::sqrt(t[0] * t[0] + t[1] * t[1]);
+    float* a = &parts[4 * std::size_t(x)];
+    a[0] = float(t[0] * s[1] - t[1] * s[0]), a[1] = float(t[0] * s[0] + t[1] * s[1]);
+    a[2] = float(s[2] * rho_t - t[2] * cos_theta), a[3] = float(rho_t * cos_theta + t[2] * s[2]);
+  }
+  for (int x = 0; x < 2 * W; ++x) angles[x] = fast_atan2(parts[2 * x], parts[2 * x + 1]);
+  const float pixels_per_radian = float(W / (2 * kPi));
+  float* o = rows.out.flow.pixel(0, y);
+  for (int x = 0; x < W; ++x) {
+    const float u = angles[2 * x] * pixels_per_radian, v = angles[2 * x + 1] * pixels_per_radian;
+    const float target = x + 0.5f + u;  // classic flow does not wrap round the seam
+    const float classic_u = target >= W ? u - W : target < 0 ? u + W : u;
+    o[2 * x] = known[x] ? (rows.mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
+    o[2 * x + 1] = known[x] ? v : kUnknownFlow;
+  }
+}
+
 FlowOutput cube_to_erp_flow(const CubeToErp& map, const FlowInput& cube, FlowMode mode) {
   require_flow_input(map.sampling, cube);
-  const int W = map.erp_width, H = W / 2, N = map.face_size;
-  const std::vector<TapFlow> apron = apron_flows(map, cube);
-  std::vector<double> cos_phi(W), sin_phi(W);
+  const int W = map.erp_width, H = W / 2;
+  FlowOutput out{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)};
+  FlowRows rows{
+      map, cube, mode, apron_flows(map, cube), std::vector<double>(W), std::vector<double>(W), out};
   for (int x = 0; x < W; ++x) {
     const double phi = angles_from_erp({x + 0.5, 0.0}, W).phi;
-    cos_phi[x] = std::cos(phi), sin_phi[x] = std::sin(phi);
+    rows.cos_phi[x] = std::cos(phi), rows.sin_phi[x] = std::sin(phi);
   }
-  const float pixels_per_radian = float(W / (2 * kPi));
-  FlowOutput out{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)};
-  parallel_rows(H, [&](int y) {
-    const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
-    const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
-    // Pass 1: the target ray t of each pixel s, as the sine and cosine parts of its longitude and
-    // latitude change (exact in double; small angles keep float relative accuracy).
-    // Pass 2, vectorised: the two angle changes. Pass 3: the flow.
-    std::vector<float> parts(4 * std::size_t(W)), angles(2 * std::size_t(W));
-    std::vector<std::uint8_t> known(W);
-    std::uint8_t* valid = out.valid.pixel(0, y);
-    for (int x = 0; x < W; ++x) {
-      const std::size_t index = std::size_t(y) * W + x;
-      const Stencil& st = map.sampling.stencils[index];
-      const TapFlow blended = blend_stencil(st, cube, apron);
-      known[x] = blended.known;
-      valid[x] = blended.known && source_valid(map.sampling, st, cube);
-      // the pixel's ray s scaled onto its face plane, moved by the blended face-plane flow
-      const FaceAxes& face = kFaceAxes[map.faces[index]];
-      const double s[3] = {cos_theta * cos_phi[x], -cos_theta * sin_phi[x], -sin_theta};
-      const double scale = face.forward_sign / s[face.forward], step = 2.0 / N;
-      double t[3] = {s[0] * scale, s[1] * scale, s[2] * scale};
-      t[face.right] += face.right_sign * step * blended.u;
-      t[face.down] += face.down_sign * step * blended.v;
-      const double rho_t = std::sqrt(t[0] * t[0] + t[1] * t[1]);
-      float* a = &parts[4 * std::size_t(x)];
-      a[0] = float(t[0] * s[1] - t[1] * s[0]), a[1] = float(t[0] * s[0] + t[1] * s[1]);
-      a[2] = float(s[2] * rho_t - t[2] * cos_theta), a[3] = float(rho_t * cos_theta + t[2] * s[2]);
-    }
-    for (int x = 0; x < 2 * W; ++x) angles[x] = fast_atan2(parts[2 * x], parts[2 * x + 1]);
-    float* o = out.flow.pixel(0, y);
-    for (int x = 0; x < W; ++x) {
-      const float u = angles[2 * x] * pixels_per_radian, v = angles[2 * x + 1] * pixels_per_radian;
-      const float target = x + 0.5f + u;  // classic flow does not wrap round the seam
-      const float classic_u = target >= W ? u - W : target < 0 ? u + W : u;
-      o[2 * x] = known[x] ? (mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
-      o[2 * x + 1] = known[x] ? v : kUnknownFlow;
-    }
-  });
+  parallel_rows(H, [&](int y) { flow_row(rows, y); });
   return out;
 }
 
@@ -385,7 +438,8 @@ FlowOutput erp_to_cube_flow(const ErpToCube& map, const FlowInput& erp) {
       for (int k = 0; k < 4; ++k) {
         taps[k] = source_flow(erp, st.tap[k]);
         taps[k].u = wrap_360(taps[k].u, W);  // classic flow blends like 360-degree flow
-        if (map.over_pole[index] >> k & 1) taps[k].v = -taps[k].v;  // rows count the other way there
+        if (map.over_pole[index] >> k & 1)
+          taps[k].v = -taps[k].v;  // rows count the other way there
       }
       const TapFlow blended = blend_flows(st, taps);
       const Vec2 centre{i + 0.5, row % N + 0.5};
@@ -395,7 +449,8 @@ FlowOutput erp_to_cube_flow(const ErpToCube& map, const FlowInput& erp) {
         const Vec3 target = direction_from_erp(sample + Vec2(blended.u, blended.v), W);
         if (const auto plane = face_plane_from_direction(face, target, N)) flow = *plane - centre;
       }
-      write_flow_pixel(flow, source_valid(map.sampling, st, erp), out.flow.pixel(i, row), out.valid.pixel(i, row));
+      write_flow_pixel(flow, source_valid(map.sampling, st, erp), out.flow.pixel(i, row),
+                       out.valid.pixel(i, row));
     }
   });
   return out;

@@ -35,7 +35,8 @@ std::filesystem::path temporary_path(const std::filesystem::path& path);
 using AnyImage = std::variant<Image<std::uint8_t>, Image<std::uint16_t>, Image<float>>;
 AnyImage read_any_image(const std::filesystem::path& path);
 
-// Reads an image whose file stores exactly T (uint8_t, uint16_t or float); other types are an error.
+// Reads an image whose file stores exactly T (uint8_t, uint16_t or float); other types are an
+// error.
 template <class T>
 Image<T> read_image(const std::filesystem::path& path);
 

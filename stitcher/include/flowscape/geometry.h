@@ -9,8 +9,8 @@
 // Cube faces are 90-degree pinholes of N x N pixels (focal N/2, principal point N/2, N/2).
 #include <Eigen/Core>
 #include <array>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <string_view>
 

@@ -13,9 +13,7 @@ struct ImageView {
 
   std::size_t pixel_count() const { return std::size_t(width) * height; }
   T* pixel(int x, int y) const { return data + (std::size_t(y) * width + x) * channels; }
-  operator ImageView<const T>() const
-    requires(!std::is_const_v<T>)
-  {
+  operator ImageView<const T>() const requires(!std::is_const_v<T>) {
     return {width, height, channels, data};
   }
 };

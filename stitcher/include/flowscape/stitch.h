@@ -55,7 +55,8 @@ CubeToErp make_cube_to_erp(int face_size, int erp_height);
 struct ErpToCube {
   int erp_width = 0, face_size = 0;
   Sampling sampling;
-  std::vector<std::uint8_t> over_pole;  // per destination pixel: bit k set when tap k is over a pole
+  std::vector<std::uint8_t>
+      over_pole;  // per destination pixel: bit k set when tap k is over a pole
 };
 ErpToCube make_erp_to_cube(int erp_height, int face_size);
 
@@ -76,13 +77,13 @@ Image<T> resample_nearest(const Sampling& sampling, const Image<T>& src) {
 }
 
 struct FlowInput {
-  ImageView<const float> flow;                 // 2 channels, u right, v down, pixels
-  ImageView<const std::uint16_t> instance{};   // optional: blend only taps of one instance
-  ImageView<const std::uint8_t> valid{};       // optional: validity of the source pixels
+  ImageView<const float> flow;                // 2 channels, u right, v down, pixels
+  ImageView<const std::uint16_t> instance{};  // optional: blend only taps of one instance
+  ImageView<const std::uint8_t> valid{};      // optional: validity of the source pixels
 };
 struct FlowOutput {
-  Image<float> flow;           // unknown targets hold kUnknownFlow
-  Image<std::uint8_t> valid;   // 1 where the nearest source is valid and the target is known
+  Image<float> flow;          // unknown targets hold kUnknownFlow
+  Image<std::uint8_t> valid;  // 1 where the nearest source is valid and the target is known
 };
 
 // Each face holds pinhole flow on its own image plane; the ERP flow of a pixel is
