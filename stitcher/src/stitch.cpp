@@ -128,8 +128,9 @@ TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
   const auto w = bilinear_weights(st);
   float u = 0, v = 0, total = 0;
   for (int k = 0; k < 4; ++k) {
-    const float weight = taps[k].known && taps[k].instance == instance ? w[k] : 0.f;
-    u += weight * taps[k].u, v += weight * taps[k].v, total += weight;
+    const bool usable = taps[k].known && taps[k].instance == instance;
+    u += usable ? w[k] * taps[k].u : 0.f, v += usable ? w[k] * taps[k].v : 0.f;
+    total += usable ? w[k] : 0.f;
   }
   if (total <= 0) return {0, 0, instance, false};
   return {u / total, v / total, instance, true};
@@ -144,25 +145,23 @@ std::uint8_t source_valid(const Sampling& sampling, const Stencil& st, const Flo
 std::vector<TapFlow> apron_flows(const CubeToErp& map, const FlowInput& in) {
   const int N = map.face_size;
   std::vector<TapFlow> flows(map.apron_pixels.size());
-  for (std::size_t a = 0; a < flows.size(); ++a) {
+  tbb::parallel_for(std::size_t(0), flows.size(), [&](std::size_t a) {
     const Stencil& st = map.sampling.apron[a];
     const ApronPixel& pixel = map.apron_pixels[a];
     TapFlow taps[4];
     for (int k = 0; k < 4; ++k) taps[k] = source_flow(in, st.tap[k]);
     TapFlow blended = blend_flows(st, taps);
-    if (!blended.known) {
-      flows[a] = blended;
-      continue;
+    if (blended.known) {
+      const Vec3 target =
+          ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
+      const auto plane = face_plane_from_direction(pixel.face, target, N);
+      blended.known = plane.has_value();
+      if (plane)
+        blended.u = float(plane->x() - (pixel.i + 0.5)),
+        blended.v = float(plane->y() - (pixel.j + 0.5));
     }
-    const Vec3 target =
-        ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
-    const auto plane = face_plane_from_direction(pixel.face, target, N);
-    blended.known = plane.has_value();
-    if (plane)
-      blended.u = float(plane->x() - (pixel.i + 0.5)),
-      blended.v = float(plane->y() - (pixel.j + 0.5));
     flows[a] = blended;
-  }
+  });
   return flows;
 }
 
@@ -310,11 +309,12 @@ TapFlow blend_face_taps(const Stencil& st, const FlowInput& in) {
     const float* f = in.flow.data + 2 * std::size_t(st.tap[k]);
     const bool usable =
         is_known_flow(f[0], f[1]) && (!kInstances || in.instance.data[st.tap[k]] == instance);
-    const float weight = usable ? w[k] : 0.f;
-    u += weight * f[0], v += weight * f[1], total += weight;
+    // select, not multiply: 0 * NaN would poison the sum
+    u += usable ? w[k] * f[0] : 0.f, v += usable ? w[k] * f[1] : 0.f, total += usable ? w[k] : 0.f;
   }
   if (total <= 0) return {0, 0, instance, false};
-  return {u / total, v / total, instance, true};
+  const float normalise = 1 / total;
+  return {u * normalise, v * normalise, instance, true};
 }
 
 TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<TapFlow>& apron) {
@@ -325,27 +325,6 @@ TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<
     taps[k] = st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
   return blend_flows(st, taps);
 }
-
-// The face bases of geometry.h are signed rig axes: axis index and sign of each vector.
-struct FaceAxes {
-  int forward, right, down;
-  double forward_sign, right_sign, down_sign;
-};
-const std::array<FaceAxes, 6> kFaceAxes = [] {
-  std::array<FaceAxes, 6> axes;
-  const auto axis = [](const Vec3& v, int& index, double& sign) {
-    v.cwiseAbs().maxCoeff(&index);
-    sign = v[index];
-  };
-  for (Face face : kFaces) {
-    const FaceBasis& b = face_basis(face);
-    FaceAxes& a = axes[int(face)];
-    axis(b.forward, a.forward, a.forward_sign);
-    axis(b.right, a.right, a.right_sign);
-    axis(b.down, a.down, a.down_sign);
-  }
-  return axes;
-}();
 
 // A stencil's taps lie on two face rows far apart in memory; asking for their cache lines a few
 // pixels ahead hides most of the wait.
@@ -369,45 +348,89 @@ struct FlowRows {
   FlowOutput& out;
 };
 
-// One ERP row. Pass 1: the target ray t of each pixel s, as the sine and cosine parts of its
-// longitude and latitude change (exact in double; small angles keep float relative accuracy).
-// Pass 2, vectorised: the two angle changes. Pass 3: the flow.
+// Per-row work arrays, one element per ERP column.
+struct FlowRowScratch {
+  std::vector<float> u, v;              // blended face-plane flow, then the ERP flow
+  std::vector<float> lon_sin, lon_cos;  // sine and cosine parts of the longitude change
+  std::vector<float> lat_sin, lat_cos;  // and of the latitude change
+  std::vector<std::uint8_t> known;
+  void resize(int width) {
+    for (auto* part : {&u, &v, &lon_sin, &lon_cos, &lat_sin, &lat_cos}) part->resize(width);
+    known.resize(width);
+  }
+};
+
+// Pixels [x0, x1) of a row, all on one face: the pixel's ray s scaled onto the face plane and moved
+// by the blended face-plane flow (u, v) gives the target ray t; the angle changes from s to t come
+// as sine and cosine parts, exact in double and kept in float (the angles are small, so float
+// keeps their relative accuracy). Constant face axes and unaliased arrays let this loop vectorise.
+// This and angle_changes are also compiled for AVX2, picked at run time: same bits, as every
+// operation is IEEE-rounded the same way and nothing is fused or reordered.
+__attribute__((target_clones("avx2", "default"))) void angle_parts(
+    const FaceBasis& b, double step, double cos_theta, double sin_theta, int x0, int x1,
+    const double* __restrict cos_phi, const double* __restrict sin_phi, const float* __restrict u,
+    const float* __restrict v, float* __restrict lon_sin, float* __restrict lon_cos,
+    float* __restrict lat_sin, float* __restrict lat_cos) {
+  const double f0 = b.forward.x(), f1 = b.forward.y(), f2 = b.forward.z();
+  const double r0 = b.right.x(), r1 = b.right.y(), r2 = b.right.z();
+  const double d0 = b.down.x(), d1 = b.down.y(), d2 = b.down.z();
+  for (int x = x0; x < x1; ++x) {
+    const double s0 = cos_theta * cos_phi[x], s1 = -cos_theta * sin_phi[x], s2 = -sin_theta;
+    const double scale = 1 / (s0 * f0 + s1 * f1 + s2 * f2);
+    const double du = step * u[x], dv = step * v[x];
+    const double t0 = s0 * scale + du * r0 + dv * d0;
+    const double t1 = s1 * scale + du * r1 + dv * d1;
+    const double t2 = s2 * scale + du * r2 + dv * d2;
+    const double rho_t = std::sqrt(t0 * t0 + t1 * t1);
+    lon_sin[x] = float(t0 * s1 - t1 * s0), lon_cos[x] = float(t0 * s0 + t1 * s1);
+    lat_sin[x] = float(s2 * rho_t - t2 * cos_theta),
+    lat_cos[x] = float(rho_t * cos_theta + t2 * s2);
+  }
+}
+
+__attribute__((target_clones("avx2", "default"))) void angle_changes(
+    int width, const float* __restrict lon_sin, const float* __restrict lon_cos,
+    const float* __restrict lat_sin, const float* __restrict lat_cos, float* __restrict lon,
+    float* __restrict lat) {
+  for (int x = 0; x < width; ++x) {
+    lon[x] = fast_atan2(lon_sin[x], lon_cos[x]);
+    lat[x] = fast_atan2(lat_sin[x], lat_cos[x]);
+  }
+}
+
+// One ERP row: blend the taps (gathers), the angle parts face run by face run, the two angle
+// changes (vectorised), then the flow.
 void flow_row(const FlowRows& rows, int y) {
-  const int W = rows.map.erp_width, N = rows.map.face_size;
-  const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
-  const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
-  thread_local std::vector<float> parts, angles;
-  thread_local std::vector<std::uint8_t> known;
-  parts.resize(4 * std::size_t(W)), angles.resize(2 * std::size_t(W)), known.resize(W);
+  const int W = rows.map.erp_width;
+  thread_local FlowRowScratch r;
+  r.resize(W);
+  const std::size_t row = std::size_t(y) * W;
   std::uint8_t* valid = rows.out.valid.pixel(0, y);
   for (int x = 0; x < W; ++x) {
-    const std::size_t index = std::size_t(y) * W + x;
-    const Stencil& st = rows.map.sampling.stencils[index];
-    if (x + kPrefetchDistance < W) prefetch_taps((&st)[kPrefetchDistance], rows.cube);
+    const Stencil& st = rows.map.sampling.stencils[row + x];
+    if (x % 4 == 0 && x + kPrefetchDistance < W) prefetch_taps((&st)[kPrefetchDistance], rows.cube);
     const TapFlow blended = blend_stencil(st, rows.cube, rows.apron);
-    known[x] = blended.known;
+    r.u[x] = blended.u, r.v[x] = blended.v, r.known[x] = blended.known;
     valid[x] = blended.known && source_valid(rows.map.sampling, st, rows.cube);
-    // the pixel's ray s scaled onto its face plane, moved by the blended face-plane flow
-    const FaceAxes& face = kFaceAxes[rows.map.faces[index]];
-    const double s[3] = {cos_theta * rows.cos_phi[x], -cos_theta * rows.sin_phi[x], -sin_theta};
-    const double scale = face.forward_sign / s[face.forward], step = 2.0 / N;
-    double t[3] = {s[0] * scale, s[1] * scale, s[2] * scale};
-    t[face.right] += face.right_sign * step * blended.u;
-    t[face.down] += face.down_sign * step * blended.v;
-    const double rho_t = std::sqrt(t[0] * t[0] + t[1] * t[1]);
-    float* a = &parts[4 * std::size_t(x)];
-    a[0] = float(t[0] * s[1] - t[1] * s[0]), a[1] = float(t[0] * s[0] + t[1] * s[1]);
-    a[2] = float(s[2] * rho_t - t[2] * cos_theta), a[3] = float(rho_t * cos_theta + t[2] * s[2]);
   }
-  for (int x = 0; x < 2 * W; ++x) angles[x] = fast_atan2(parts[2 * x], parts[2 * x + 1]);
+  const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
+  const std::uint8_t* faces = &rows.map.faces[row];
+  for (int x0 = 0, x1 = 0; x0 < W; x0 = x1) {
+    while (x1 < W && faces[x1] == faces[x0]) ++x1;
+    angle_parts(face_basis(Face(faces[x0])), 2.0 / rows.map.face_size, std::cos(theta),
+                std::sin(theta), x0, x1, rows.cos_phi.data(), rows.sin_phi.data(), r.u.data(),
+                r.v.data(), r.lon_sin.data(), r.lon_cos.data(), r.lat_sin.data(), r.lat_cos.data());
+  }
+  angle_changes(W, r.lon_sin.data(), r.lon_cos.data(), r.lat_sin.data(), r.lat_cos.data(),
+                r.u.data(), r.v.data());
   const float pixels_per_radian = float(W / (2 * kPi));
   float* o = rows.out.flow.pixel(0, y);
   for (int x = 0; x < W; ++x) {
-    const float u = angles[2 * x] * pixels_per_radian, v = angles[2 * x + 1] * pixels_per_radian;
+    const float u = r.u[x] * pixels_per_radian, v = r.v[x] * pixels_per_radian;
     const float target = x + 0.5f + u;  // classic flow does not wrap round the seam
     const float classic_u = target >= W ? u - W : target < 0 ? u + W : u;
-    o[2 * x] = known[x] ? (rows.mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
-    o[2 * x + 1] = known[x] ? v : kUnknownFlow;
+    o[2 * x] = r.known[x] ? (rows.mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
+    o[2 * x + 1] = r.known[x] ? v : kUnknownFlow;
   }
 }
 
