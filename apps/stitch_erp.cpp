@@ -2,6 +2,7 @@
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -67,6 +68,15 @@ void stitch_image(const Options& o, const CubeToErp& map, const Job& job) {
       cube);
 }
 
+// The files a job writes; it is done when they all exist.
+std::vector<fsys::path> outputs(const Options& o, const Job& job) {
+  std::vector<fsys::path> files{o.out_dir / job.modality / job.file};
+  const std::string mask_file = stem(job.file) + ".png";
+  if (job.modality == "flow" && has_cube_file(o.cube_dir, "valid", mask_file))
+    files.push_back(o.out_dir / "valid" / mask_file);
+  return files;
+}
+
 std::vector<Job> list_jobs(const Options& o) {
   std::set<std::string> flow_frames;
   for (const std::string& file : cube_frame_files(o.cube_dir, "flow"))
@@ -76,7 +86,11 @@ std::vector<Job> list_jobs(const Options& o) {
     for (const std::string& file : cube_frame_files(o.cube_dir, modality)) {
       // the valid mask of a frame with flow comes out of the flow stitch
       if (modality == "valid" && flow_frames.contains(stem(file))) continue;
-      if (o.force || !fsys::exists(o.out_dir / modality / file)) jobs.push_back({modality, file});
+      const Job job{modality, file};
+      const auto files = outputs(o, job);
+      const bool done = std::all_of(files.begin(), files.end(),
+                                    [](const fsys::path& f) { return fsys::exists(f); });
+      if (o.force || !done) jobs.push_back(job);
     }
   return jobs;
 }

@@ -27,6 +27,9 @@ for m in color/000000.png color/000001.png flow/000000.flo semantic/000000.png i
 done
 check "stitch a cubemap folder" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp" --height 64
 check "rerun resumes (nothing left to do)" bash -c "'$bin/stitch_erp' '$work/demo/cube' -o '$work/erp' --height 64 2>&1 | grep -q 'nothing to do'"
+rm "$work/erp/valid/000000.png"  # as if killed between the flow and its mask
+check "rerun redoes a half-finished frame" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp" --height 64
+check "the mask is back" test -s "$work/erp/valid/000000.png"
 check "classic flow mode" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp_classic" --height 64 --flow-mode classic
 check "flowviz writes a PNG" "$bin/flowviz" "$work/erp/flow/000000.flo" -o "$work/viz.png" --wheel middlebury
 check "flowviz PNG exists" test -s "$work/viz.png"

@@ -1,3 +1,5 @@
+#include <tbb/global_control.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -235,4 +237,17 @@ TEST_CASE("inputs of the wrong size are rejected with a clear message") {
   CHECK_THROWS_WITH(cube_to_erp_flow(map, {one_channel.view()}, FlowMode::Wrap360),
                     Catch::Contains("channels"));
   CHECK_THROWS_AS(make_cube_to_erp(0, 64), std::invalid_argument);
+}
+
+TEST_CASE("the stitch gives the same bytes with 1 and 2 threads") {
+  const int N = 64, H = 96;
+  const Image<float> flow = yaw_cube_flow(N, 0.2);
+  const Image<std::uint8_t> colour = pattern_cube(N);
+  const CubeToErp map = make_cube_to_erp(N, H);
+  const auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return std::make_pair(cube_to_erp_flow(map, {flow.view()}, FlowMode::Wrap360).flow.data,
+                          resample_bilinear(map.sampling, colour).data);
+  };
+  CHECK(run(1) == run(2));
 }

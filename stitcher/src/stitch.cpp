@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -299,6 +298,8 @@ FLOWSCAPE_RESAMPLE(std::uint16_t)
 FLOWSCAPE_RESAMPLE(float)
 #undef FLOWSCAPE_RESAMPLE
 
+namespace {
+
 // blend_flows for a stencil whose taps are all face pixels, written out for speed.
 template <bool kInstances>
 TapFlow blend_face_taps(const Stencil& st, const FlowInput& in) {
@@ -362,10 +363,11 @@ struct FlowRowScratch {
 
 // Pixels [x0, x1) of a row, all on one face: the pixel's ray s scaled onto the face plane and moved
 // by the blended face-plane flow (u, v) gives the target ray t; the angle changes from s to t come
-// as sine and cosine parts, exact in double and kept in float (the angles are small, so float
-// keeps their relative accuracy). Constant face axes and unaliased arrays let this loop vectorise.
-// This and angle_changes are also compiled for AVX2, picked at run time: same bits, as every
-// operation is IEEE-rounded the same way and nothing is fused or reordered.
+// as sine and cosine parts, computed in double and kept in float (a small angle's sine part keeps
+// float's relative accuracy, so small flows stay exact to 1e-7 of their size). Constant face axes
+// and unaliased arrays let this loop vectorise. This and angle_changes are also compiled for AVX2,
+// picked at run time: same bits, as every operation is IEEE-rounded the same way and nothing is
+// fused or reordered.
 __attribute__((target_clones("avx2", "default"))) void angle_parts(
     const FaceBasis& b, double step, double cos_theta, double sin_theta, int x0, int x1,
     const double* __restrict cos_phi, const double* __restrict sin_phi, const float* __restrict u,
@@ -382,8 +384,9 @@ __attribute__((target_clones("avx2", "default"))) void angle_parts(
     const double t1 = s1 * scale + du * r1 + dv * d1;
     const double t2 = s2 * scale + du * r2 + dv * d2;
     const double rho_t = std::sqrt(t0 * t0 + t1 * t1);
-    lon_sin[x] = float(t0 * s1 - t1 * s0), lon_cos[x] = float(t0 * s0 + t1 * s1);
-    lat_sin[x] = float(s2 * rho_t - t2 * cos_theta),
+    lon_sin[x] = float(t0 * s1 - t1 * s0);
+    lon_cos[x] = float(t0 * s0 + t1 * s1);
+    lat_sin[x] = float(s2 * rho_t - t2 * cos_theta);
     lat_cos[x] = float(rho_t * cos_theta + t2 * s2);
   }
 }
@@ -414,12 +417,13 @@ void flow_row(const FlowRows& rows, int y) {
     valid[x] = blended.known && source_valid(rows.map.sampling, st, rows.cube);
   }
   const double theta = angles_from_erp({0.0, y + 0.5}, W).theta;
+  const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
   const std::uint8_t* faces = &rows.map.faces[row];
   for (int x0 = 0, x1 = 0; x0 < W; x0 = x1) {
     while (x1 < W && faces[x1] == faces[x0]) ++x1;
-    angle_parts(face_basis(Face(faces[x0])), 2.0 / rows.map.face_size, std::cos(theta),
-                std::sin(theta), x0, x1, rows.cos_phi.data(), rows.sin_phi.data(), r.u.data(),
-                r.v.data(), r.lon_sin.data(), r.lon_cos.data(), r.lat_sin.data(), r.lat_cos.data());
+    angle_parts(face_basis(Face(faces[x0])), 2.0 / rows.map.face_size, cos_theta, sin_theta, x0, x1,
+                rows.cos_phi.data(), rows.sin_phi.data(), r.u.data(), r.v.data(), r.lon_sin.data(),
+                r.lon_cos.data(), r.lat_sin.data(), r.lat_cos.data());
   }
   angle_changes(W, r.lon_sin.data(), r.lon_cos.data(), r.lat_sin.data(), r.lat_cos.data(),
                 r.u.data(), r.v.data());
@@ -433,6 +437,8 @@ void flow_row(const FlowRows& rows, int y) {
     o[2 * x + 1] = r.known[x] ? v : kUnknownFlow;
   }
 }
+
+}  // namespace
 
 FlowOutput cube_to_erp_flow(const CubeToErp& map, const FlowInput& cube, FlowMode mode) {
   require_flow_input(map.sampling, cube);
