@@ -28,12 +28,17 @@ Image<T> stack_faces(const std::array<Image<T>, 6>& faces, const std::filesystem
   return stack;
 }
 
+// The six faces, reading every face but the front, which the caller may have read already.
 template <class T>
 Image<T> read_cube_typed(const std::filesystem::path& cube_dir, const std::string& modality,
-                         const std::string& file_name) {
+                         const std::string& file_name, Image<T> front = {}) {
   std::array<Image<T>, 6> faces;
+  faces[0] = front.data.empty()
+                 ? read_image<T>(cube_file(cube_dir, Face::Front, modality, file_name))
+                 : std::move(front);
   for (Face face : kFaces)
-    faces[int(face)] = read_image<T>(cube_file(cube_dir, face, modality, file_name));
+    if (face != Face::Front)
+      faces[int(face)] = read_image<T>(cube_file(cube_dir, face, modality, file_name));
   return stack_faces(faces, cube_dir, modality, file_name);
 }
 
@@ -46,11 +51,11 @@ std::filesystem::path cube_file(const std::filesystem::path& cube_dir, Face face
 
 AnyImage read_cube_image(const std::filesystem::path& cube_dir, const std::string& modality,
                          const std::string& file_name) {
-  const AnyImage front = read_any_image(cube_file(cube_dir, Face::Front, modality, file_name));
+  AnyImage front = read_any_image(cube_file(cube_dir, Face::Front, modality, file_name));
   return std::visit(
-      [&](const auto& image) -> AnyImage {
+      [&](auto& image) -> AnyImage {
         using T = typename std::decay_t<decltype(image)>::value_type;
-        return read_cube_typed<T>(cube_dir, modality, file_name);
+        return read_cube_typed<T>(cube_dir, modality, file_name, std::move(image));
       },
       front);
 }
