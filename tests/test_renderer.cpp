@@ -1,0 +1,183 @@
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "flowscape/renderer.h"
+#include "flowscape/stitch.h"
+#include "flowscape/test_scenes.h"
+#include "independent_math.h"
+
+using namespace flowscape;
+
+namespace {
+
+FramePair yaw_left(double degrees) {
+  FramePair frames;
+  frames.next_rig = Pose(Eigen::AngleAxisd(degrees * indep::pi / 180, Vec3::UnitZ()));
+  return frames;
+}
+
+// The six faces of one frame stacked into a cubemap (N x 6N), as the stitcher takes them.
+struct CubeTruth {
+  Image<float> flow;
+  Image<std::uint16_t> instance;
+};
+
+CubeTruth render_cube(Renderer& renderer, int N, const FramePair& frames) {
+  CubeTruth cube{Image<float>(N, 6 * N, 2), Image<std::uint16_t>(N, 6 * N, 1)};
+  for (Face face : kFaces) {
+    const GroundTruth gt = renderer.ground_truth(Projection::cube_face(face, N), frames);
+    std::copy(gt.flow.data.begin(), gt.flow.data.end(), face_view(cube.flow.view(), face).data);
+    std::copy(gt.instance.data.begin(), gt.instance.data.end(),
+              face_view(cube.instance.view(), face).data);
+  }
+  return cube;
+}
+
+}  // namespace
+
+TEST_CASE("a pure camera rotation gives the rotation flow in every face and in ERP") {
+  const Scene room = box_room();
+  Renderer renderer(room);
+  const int N = 48;
+  const double psi = 4 * indep::pi / 180;
+  for (Face face : kFaces) {
+    const GroundTruth gt = renderer.ground_truth(Projection::cube_face(face, N), yaw_left(4));
+    double worst = 0;
+    int invalid = 0;
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i) {
+        const auto expected =
+            indep::yaw_face_flow(int(face), 2 * (i + 0.5) / N - 1, 2 * (j + 0.5) / N - 1, psi, N);
+        worst = std::max({worst, std::abs(gt.flow.pixel(i, j)[0] - expected[0]),
+                          std::abs(gt.flow.pixel(i, j)[1] - expected[1])});
+        invalid += *gt.valid.pixel(i, j) == 0;
+      }
+    CHECK(worst < 1e-3);
+    CHECK(invalid == 0);  // nothing moves into the way in an empty room
+  }
+  // the sky, too, moves with the rotation only
+  const Scene plane = textured_plane();
+  Renderer open_air(plane);
+  const int H = 64, W = 2 * H;
+  const GroundTruth erp = open_air.ground_truth(Projection::equirectangular(H), yaw_left(4));
+  double worst = 0;
+  int sky = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      worst = std::max({worst, std::abs(erp.flow.pixel(x, y)[0] - 4.0 / 360 * W),
+                        std::abs(double(erp.flow.pixel(x, y)[1]))});
+      sky += *erp.semantic.pixel(x, y) == std::uint8_t(SemanticClass::Sky);
+    }
+  CHECK(sky > W * H / 4);
+  CHECK(worst < 1e-3);
+}
+
+TEST_CASE("a camera translating past a plane at known distance gives u = f d / D") {
+  const double D = 10, d = 0.2;  // the rig moves d metres to its left
+  const Scene plane = textured_plane(D);
+  Renderer renderer(plane);
+  FramePair frames;
+  frames.next_rig = Pose(Eigen::Translation3d(0, d, 0));
+  const int N = 64;
+  const double f = N / 2.0;
+  const GroundTruth front = renderer.ground_truth(Projection::cube_face(Face::Front, N), frames);
+  double worst = 0;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i) {
+      REQUIRE(*front.semantic.pixel(i, j) == std::uint8_t(SemanticClass::Wall));
+      worst = std::max({worst, std::abs(front.flow.pixel(i, j)[0] - f * d / D),
+                        std::abs(double(front.flow.pixel(i, j)[1]))});
+      // depth along the ray: the plane's distance over the cosine of the ray's angle
+      const double a = 2 * (i + 0.5) / N - 1, b = 2 * (j + 0.5) / N - 1;
+      CHECK(*front.depth.pixel(i, j) == Approx(D * std::sqrt(1 + a * a + b * b)).epsilon(1e-5));
+    }
+  CHECK(worst < 1e-3);
+  // the sky behind the rig does not move under translation
+  const GroundTruth back = renderer.ground_truth(Projection::cube_face(Face::Back, N), frames);
+  for (std::size_t k = 0; k < back.flow.data.size(); ++k) CHECK(std::abs(back.flow.data[k]) < 1e-4);
+  CHECK(std::isinf(back.depth.data[0]));
+}
+
+TEST_CASE("a moving object's flow matches its motion, with its ids and occlusions") {
+  const Vec3 centre(8, 0, 0), velocity(0, 0, 3);  // up 0.1 m per frame at 30 Hz
+  const Scene scene = moving_box(centre, velocity);
+  Renderer renderer(scene);
+  const int N = 256;
+  const double f = N / 2.0, rise = velocity.z() / 30, near_side = centre.x() - 1;
+  const GroundTruth gt = renderer.ground_truth(Projection::cube_face(Face::Front, N), FramePair{});
+  int box_pixels = 0, hidden = 0, wrongly_hidden = 0;
+  double worst = 0;
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i) {
+      const bool on_box = *gt.instance.pixel(i, j) == 7;
+      if (on_box) {
+        ++box_pixels;
+        CHECK(*gt.semantic.pixel(i, j) == std::uint8_t(SemanticClass::Vehicles));
+        // the near side x = 7 is parallel to the image: every point moves up by f * rise / 7
+        worst = std::max({worst, std::abs(double(gt.flow.pixel(i, j)[0])),
+                          std::abs(gt.flow.pixel(i, j)[1] + f * rise / near_side)});
+        CHECK(*gt.valid.pixel(i, j) == 1);
+      } else if (*gt.valid.pixel(i, j) == 0) {
+        ++hidden;
+        // the wall just above the box's top edge (row f - f / 7) disappears behind it
+        const double top_edge = f - f * 1 / near_side, rise_rows = f * rise / near_side;
+        wrongly_hidden += !(j + 0.5 < top_edge && j + 0.5 > top_edge - rise_rows - 1);
+      }
+    }
+  CHECK(box_pixels > 1000);
+  CHECK(worst < 1e-3);
+  CHECK(hidden > 10);
+  CHECK(wrongly_hidden == 0);
+}
+
+TEST_CASE("stitched cube flow and direct ERP flow agree away from object edges") {
+  const Scene scene = moving_box(Vec3(6, 2, 0.5), Vec3(1, -4, 2));
+  Renderer renderer(scene);
+  FramePair frames;
+  frames.next_rig = Pose(Eigen::Translation3d(0.3, 0.1, 0)) *
+                    Pose(Eigen::AngleAxisd(0.05, Vec3(0.2, 0.1, 1).normalized()));
+  const int N = 128, H = 128, W = 2 * H;
+  const CubeTruth cube = render_cube(renderer, N, frames);
+  const FlowOutput stitched = cube_to_erp_flow(
+      make_cube_to_erp(N, H), {cube.flow.view(), cube.instance.view()}, FlowMode::Wrap360);
+  const GroundTruth direct = renderer.ground_truth(Projection::equirectangular(H), frames);
+  std::vector<double> errors;
+  for (int y = 2; y < H - 2; ++y)
+    for (int x = 0; x < W; ++x) {
+      bool uniform = true;  // the same instance and class in the 5 x 5 neighbourhood
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const int xx = (x + dx + W) % W, yy = y + dy;
+          uniform &= *direct.instance.pixel(xx, yy) == *direct.instance.pixel(x, y) &&
+                     *direct.semantic.pixel(xx, yy) == *direct.semantic.pixel(x, y);
+        }
+      if (!uniform) continue;
+      errors.push_back(std::hypot(stitched.flow.pixel(x, y)[0] - direct.flow.pixel(x, y)[0],
+                                  stitched.flow.pixel(x, y)[1] - direct.flow.pixel(x, y)[1]));
+    }
+  REQUIRE(errors.size() > std::size_t(W * H / 2));
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  CHECK(errors[errors.size() / 2] < 0.05);
+}
+
+TEST_CASE("ground truth is the same bytes with 1 and 2 threads") {
+  const Scene scene = moving_box(Vec3(6, 1, 0), Vec3(0, 2, 1));
+  Renderer renderer(scene);
+  const auto render = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const GroundTruth gt = renderer.ground_truth(Projection::equirectangular(48), yaw_left(2));
+    return std::make_tuple(gt.flow.data, gt.semantic.data, gt.instance.data, gt.depth.data,
+                           gt.valid.data);
+  };
+  CHECK(render(1) == render(2));
+}
+
+TEST_CASE("meshes without a class per triangle are refused") {
+  Scene scene = box_room();
+  scene.world.classes.pop_back();
+  CHECK_THROWS_WITH(Renderer(scene), Catch::Contains("one semantic class per triangle"));
+}
