@@ -39,10 +39,38 @@ enum class SemanticClass : std::uint8_t {
   Terrain = 22
 };
 
+// Surface appearance. Albedos are linear RGB reflectances in [0, 1].
+struct Material {
+  enum class Kind : std::uint8_t {
+    Diffuse,   // Lambertian
+    Glossy,    // diffuse base under a clear coat (car paint, plastic)
+    Metal,     // tinted specular lobe
+    Glass,     // smooth dielectric, index 1.5
+    Emissive,  // a light: emits `emission`, reflects nothing
+  };
+  Kind kind = Kind::Diffuse;
+  Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};
+  // A solid 3-D checker in the object's own frame (it moves with the object); 0 = plain albedo.
+  float checker_size = 0;
+  Eigen::Vector3f checker_albedo{0.2f, 0.2f, 0.2f};
+  float roughness = 0.1f;  // width of the Glossy / Metal lobe (0 = mirror)
+  Eigen::Vector3f emission{0, 0, 0};  // linear radiance, W / (m^2 sr) per channel
+};
+
 struct Mesh {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
-  std::vector<SemanticClass> classes;  // one per triangle
+  std::vector<SemanticClass> classes;    // one per triangle
+  std::vector<std::uint16_t> materials;  // one per triangle, into Scene::materials; empty = all 0
+};
+
+// Light from outside the scene: a sun disc and a sky dome.
+struct Environment {
+  Eigen::Vector3d sun_direction = Eigen::Vector3d(0.4, 0.3, 0.87).normalized();  // towards the sun
+  Eigen::Vector3f sun_irradiance{3.0f, 2.85f, 2.6f};  // on a plane facing the sun, linear RGB
+  double sun_angular_radius = 0.00465;                // radians (the real sun)
+  Eigen::Vector3f sky_zenith{0.25f, 0.4f, 0.8f}, sky_horizon{0.7f, 0.8f, 0.9f};  // radiance
+  Eigen::Vector3f ground{0.15f, 0.14f, 0.12f};  // radiance of the dome below the horizon
 };
 
 // A rigid piece of an actor (a car body, a wheel, a leg), posed relative to the actor.
@@ -60,6 +88,8 @@ struct Actor {
 struct Scene {
   Mesh world;  // static geometry, instance 0
   std::vector<Actor> actors;
+  std::vector<Material> materials{Material{}};
+  Environment environment;
 };
 
 // Pose of a part at time t: the actor's pose times the part's pose in the actor.

@@ -1,0 +1,148 @@
+#include "embree_scene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace flowscape {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+// The visibility ray stops this fraction short of the target, so the target's own surface does not
+// count as an occluder (float hit points are good to about 1e-6 of their distance).
+constexpr double kVisibilityMargin = 1e-4;
+
+RTCScene build_bvh(RTCDevice device, const Mesh& mesh) {
+  RTCScene bvh = rtcNewScene(device);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                               mesh.vertices.size()));
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.vertices[i][c];
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), mesh.triangles.size()));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) indices[3 * t + c] = unsigned(mesh.triangles[t][c]);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(bvh, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(bvh);
+  return bvh;
+}
+
+void require_valid_mesh(const Mesh& mesh, const std::string& name) {
+  if (mesh.classes.size() != mesh.triangles.size())
+    throw std::invalid_argument(name + ": needs one semantic class per triangle");
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c)
+      if (t[c] < 0 || std::size_t(t[c]) >= mesh.vertices.size())
+        throw std::invalid_argument(name + ": triangle index out of range");
+}
+
+std::string mesh_name(const MeshRef& ref) {
+  return ref.actor < 0 ? "world mesh"
+                       : "actor " + std::to_string(ref.actor) + " part " + std::to_string(ref.part);
+}
+
+Hit intersect_scene(RTCScene scene, const Vec3& origin, const Vec3& direction) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = float(origin.x()), rh.ray.org_y = float(origin.y()),
+  rh.ray.org_z = float(origin.z());
+  rh.ray.dir_x = float(direction.x()), rh.ray.dir_y = float(direction.y()),
+  rh.ray.dir_z = float(direction.z());
+  rh.ray.tnear = 0, rh.ray.tfar = kInfinity, rh.ray.mask = ~0u;
+  rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  return {true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar};
+}
+
+bool occluded_in(RTCScene scene, const Vec3& origin, const Vec3& direction, double distance) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
+  ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y()),
+  ray.dir_z = float(direction.z());
+  ray.tnear = 0, ray.mask = ~0u;
+  ray.tfar = std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin));
+  rtcOccluded1(scene, &context, &ray);
+  return ray.tfar < 0;
+}
+
+void require_valid_materials(const Mesh& mesh, std::size_t material_count, const std::string& name) {
+  if (!mesh.materials.empty() && mesh.materials.size() != mesh.triangles.size())
+    throw std::invalid_argument(name + ": needs one material per triangle (or none)");
+  for (std::uint16_t m : mesh.materials)
+    if (m >= material_count) throw std::invalid_argument(name + ": material index out of range");
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create an Embree device");
+  meshes_.push_back({&scene.world});
+  for (std::size_t a = 0; a < scene.actors.size(); ++a)
+    for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p)
+      meshes_.push_back({&scene.actors[a].parts[p].mesh, int(a), int(p), scene.actors[a].instance});
+  for (const MeshRef& ref : meshes_) {
+    require_valid_mesh(*ref.mesh, mesh_name(ref));
+    require_valid_materials(*ref.mesh, scene.materials.size(), mesh_name(ref));
+    bvhs_.push_back(build_bvh(device_, *ref.mesh));
+  }
+  now_ = instances(), next_ = instances();
+}
+
+EmbreeScene::~EmbreeScene() {
+  for (RTCScene s : {now_, next_}) rtcReleaseScene(s);
+  for (RTCScene s : bvhs_) rtcReleaseScene(s);
+  rtcReleaseDevice(device_);
+}
+
+RTCScene EmbreeScene::instances() const {
+  RTCScene top = rtcNewScene(device_);
+  for (unsigned m = 0; m < bvhs_.size(); ++m) {
+    RTCGeometry instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instance, bvhs_[m]);
+    rtcAttachGeometryByID(top, instance, m);
+    rtcReleaseGeometry(instance);
+  }
+  return top;
+}
+
+Pose EmbreeScene::pose(unsigned mesh, double t) const {
+  const MeshRef& ref = meshes_[mesh];
+  if (ref.actor < 0) return Pose::Identity();
+  const Actor& actor = scene_.actors[ref.actor];
+  return part_pose(actor, actor.parts[ref.part], t);
+}
+
+void EmbreeScene::pose_instances(RTCScene top, double t) const {
+  for (unsigned m = 0; m < bvhs_.size(); ++m) {
+    const Eigen::Matrix<float, 3, 4> transform = pose(m, t).matrix().topRows<3>().cast<float>();
+    RTCGeometry instance = rtcGetGeometry(top, m);
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
+    rtcCommitGeometry(instance);
+  }
+  rtcCommitScene(top);
+}
+
+void EmbreeScene::set_times(double now, double next) {
+  pose_instances(now_, now);
+  pose_instances(next_, next);
+}
+
+Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
+  return intersect_scene(now_, origin, direction);
+}
+
+bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& direction,
+                           double distance) const {
+  return occluded_in(at_next ? next_ : now_, origin, direction, distance);
+}
+
+}  // namespace flowscape

@@ -1,0 +1,55 @@
+#pragma once
+// Internal: a Scene in Embree. One BVH per mesh, built once; two top-level scenes instance every
+// BVH, posed at the two times of a frame pair.
+#include <embree3/rtcore.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "flowscape/geometry.h"
+#include "flowscape/scene.h"
+
+namespace flowscape {
+
+// One mesh of the scene: the static world (actor < 0) or one part of an actor.
+struct MeshRef {
+  const Mesh* mesh;
+  int actor = -1, part = -1;
+  std::uint16_t instance = 0;
+};
+
+struct Hit {
+  bool found = false;
+  unsigned mesh = 0, triangle = 0;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const Scene& scene);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  void set_times(double now, double next);  // poses the instances of both top-level scenes
+  Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
+  // Whether anything lies within `distance` along the ray (infinity: anywhere).
+  bool occluded(bool at_next, const Vec3& origin, const Vec3& direction, double distance) const;
+
+  Pose pose(unsigned mesh, double t) const;
+  const MeshRef& mesh(unsigned index) const { return meshes_[index]; }
+  const Scene& scene() const { return scene_; }
+
+ private:
+  RTCScene instances() const;
+  void pose_instances(RTCScene top, double t) const;
+
+  const Scene& scene_;
+  RTCDevice device_ = nullptr;
+  std::vector<MeshRef> meshes_;
+  std::vector<RTCScene> bvhs_;
+  RTCScene now_ = nullptr, next_ = nullptr;
+};
+
+}  // namespace flowscape
