@@ -73,7 +73,8 @@ bool occluded_in(RTCScene scene, const Vec3& origin, const Vec3& direction, doub
   return ray.tfar < 0;
 }
 
-void require_valid_materials(const Mesh& mesh, std::size_t material_count, const std::string& name) {
+void require_valid_materials(const Mesh& mesh, std::size_t material_count,
+                             const std::string& name) {
   if (!mesh.materials.empty() && mesh.materials.size() != mesh.triangles.size())
     throw std::invalid_argument(name + ": needs one material per triangle (or none)");
   for (std::uint16_t m : mesh.materials)

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "embree_scene.h"
+#include "path_tracer.h"
 
 namespace flowscape {
 
@@ -16,6 +17,11 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Renderer::~Renderer() = default;
+
+Image<float> Renderer::color(const Projection& projection, const FramePair& frames,
+                             const RenderOptions& options) {
+  return path_trace(impl_->embree, projection, frames, options);
+}
 
 GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair& frames,
                                    FlowMode mode) {

@@ -24,6 +24,13 @@ struct GroundTruth {
   Image<std::uint8_t> valid;      // 1 where the target is in front of the camera and visible then
 };
 
+struct RenderOptions {
+  int samples_per_pixel = 16;
+  int max_bounces = 4;  // Russian roulette may end paths earlier after the third bounce
+  std::uint64_t seed =
+      0;  // with the pixel, the sample and the dimension, seeds every random number
+};
+
 class Renderer {
  public:
   explicit Renderer(const Scene& scene);
@@ -35,6 +42,12 @@ class Renderer {
   // by the camera at next_time; the sky moves with the rig's rotation only.
   GroundTruth ground_truth(const Projection& projection, const FramePair& frames,
                            FlowMode mode = FlowMode::Wrap360);
+
+  // Linear HDR radiance (RGB) at frames.time, path traced: Lambertian, clear-coat, metal, glass
+  // and emissive surfaces, sun (sampled directly) and sky, Russian roulette, a low-discrepancy
+  // sampler (R2 per dimension pair, shifted per pixel). The same bytes for any thread count.
+  Image<float> color(const Projection& projection, const FramePair& frames,
+                     const RenderOptions& options = {});
 
  private:
   struct Impl;

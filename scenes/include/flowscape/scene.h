@@ -53,7 +53,7 @@ struct Material {
   // A solid 3-D checker in the object's own frame (it moves with the object); 0 = plain albedo.
   float checker_size = 0;
   Eigen::Vector3f checker_albedo{0.2f, 0.2f, 0.2f};
-  float roughness = 0.1f;  // width of the Glossy / Metal lobe (0 = mirror)
+  float roughness = 0.1f;             // width of the Glossy / Metal lobe (0 = mirror)
   Eigen::Vector3f emission{0, 0, 0};  // linear radiance, W / (m^2 sr) per channel
 };
 

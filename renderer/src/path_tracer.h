@@ -1,0 +1,11 @@
+#pragma once
+// Internal: the colour pass of Renderer (see Renderer::color).
+#include "embree_scene.h"
+#include "flowscape/renderer.h"
+
+namespace flowscape {
+
+Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const FramePair& frames,
+                        const RenderOptions& options);
+
+}  // namespace flowscape
