@@ -190,7 +190,7 @@ namespace {
 Scene sunlit_street() {
   Scene scene = textured_plane(10, 60);
   Material wall;
-  wall.albedo = {0.8f, 0.5f, 0.2f}, wall.checker_size = 2,
+  wall.albedo = {0.8f, 0.5f, 0.2f}, wall.checker_size = 1.5f,
   wall.checker_albedo = {0.05f, 0.1f, 0.3f};
   Material paint;
   paint.kind = Material::Kind::Glossy, paint.albedo = {0.1f, 0.6f, 0.1f};
@@ -291,7 +291,7 @@ TEST_CASE("backward-warping frame t+1 with the ground-truth flow reproduces fram
   const Image<float> again = renderer.color(camera, frames, {32, 3, 2});  // other noise
   const Image<float> second = renderer.color(camera, next, {32, 3, 1});
   const GroundTruth gt = renderer.ground_truth(camera, frames);
-  double pe = 0, wpe = 0, noise = 0;
+  double pe = 0, wpe = 0, noise = 0, wpe_off = 0;
   int count = 0;
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
@@ -302,14 +302,18 @@ TEST_CASE("backward-warping frame t+1 with the ground-truth flow reproduces fram
         continue;
       pe += mean_abs_difference(second, px, py, first, px, py);
       wpe += mean_abs_difference(second, tx, ty, first, px, py);
+      wpe_off += mean_abs_difference(second, tx + 1, ty, first, px, py);  // a flow 1 px off
       noise += mean_abs_difference(again, px, py, first, px, py);
       ++count;
     }
   REQUIRE(count > camera.width * camera.height / 2);
-  pe /= count, wpe /= count, noise /= count;
-  INFO("PE " << pe << ", WPE " << wpe << ", noise between two renders of one frame " << noise);
-  // what remains beyond the noise is bilinear sampling across texture and object edges and the
-  // view-dependent clear coat of the box; a flow one pixel off would leave WPE near PE / 2
-  CHECK(wpe < 0.25 * pe);
-  CHECK(wpe < 2 * noise);
+  pe /= count, wpe /= count, noise /= count, wpe_off /= count;
+  INFO("PE " << pe << ", WPE " << wpe << ", noise between two renders of one frame " << noise
+             << ", WPE of a flow 1 px off " << wpe_off);
+  // Diff = (PE - WPE) / PE above 80 % (the paper's FlowScape: 48.7 %). What remains beyond the
+  // render noise is bilinear sampling across the box-filtered checker and object edges, and the
+  // view-dependent clear coat of the box; a flow one pixel off is clearly worse.
+  CHECK(wpe < 0.2 * pe);
+  CHECK(wpe < 3 * noise);
+  CHECK(wpe < 0.7 * wpe_off);
 }
