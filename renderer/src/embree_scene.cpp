@@ -115,16 +115,18 @@ RTCScene EmbreeScene::instances() const {
   return top;
 }
 
-Pose EmbreeScene::pose(unsigned mesh, double t) const {
+Pose EmbreeScene::pose_at(unsigned mesh, double t) const {
   const MeshRef& ref = meshes_[mesh];
   if (ref.actor < 0) return Pose::Identity();
   const Actor& actor = scene_.actors[ref.actor];
   return part_pose(actor, actor.parts[ref.part], t);
 }
 
-void EmbreeScene::pose_instances(RTCScene top, double t) const {
+void EmbreeScene::pose_instances(RTCScene top, double t, std::vector<Pose>& poses) const {
+  poses.resize(bvhs_.size());
   for (unsigned m = 0; m < bvhs_.size(); ++m) {
-    const Eigen::Matrix<float, 3, 4> transform = pose(m, t).matrix().topRows<3>().cast<float>();
+    poses[m] = pose_at(m, t);
+    const Eigen::Matrix<float, 3, 4> transform = poses[m].matrix().topRows<3>().cast<float>();
     RTCGeometry instance = rtcGetGeometry(top, m);
     rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
     rtcCommitGeometry(instance);
@@ -133,8 +135,8 @@ void EmbreeScene::pose_instances(RTCScene top, double t) const {
 }
 
 void EmbreeScene::set_times(double now, double next) {
-  pose_instances(now_, now);
-  pose_instances(next_, next);
+  pose_instances(now_, now, poses_now_);
+  pose_instances(next_, next, poses_next_);
 }
 
 Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {

@@ -37,19 +37,23 @@ class EmbreeScene {
   // Whether anything lies within `distance` along the ray (infinity: anywhere).
   bool occluded(bool at_next, const Vec3& origin, const Vec3& direction, double distance) const;
 
-  Pose pose(unsigned mesh, double t) const;
+  // Poses at the two times of set_times (evaluated once per call there, not per ray).
+  const Pose& pose_now(unsigned mesh) const { return poses_now_[mesh]; }
+  const Pose& pose_next(unsigned mesh) const { return poses_next_[mesh]; }
   const MeshRef& mesh(unsigned index) const { return meshes_[index]; }
   const Scene& scene() const { return scene_; }
 
  private:
   RTCScene instances() const;
-  void pose_instances(RTCScene top, double t) const;
+  Pose pose_at(unsigned mesh, double t) const;
+  void pose_instances(RTCScene top, double t, std::vector<Pose>& poses) const;
 
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
   std::vector<RTCScene> bvhs_;
   RTCScene now_ = nullptr, next_ = nullptr;
+  std::vector<Pose> poses_now_, poses_next_;
 };
 
 }  // namespace flowscape

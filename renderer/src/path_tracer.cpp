@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace flowscape {
@@ -95,14 +96,13 @@ struct Surface {
   Rgb albedo;
 };
 
-Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin, const Vec3& dir,
-                   double time) {
+Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin, const Vec3& dir) {
   const MeshRef& ref = embree.mesh(hit.mesh);
   const Eigen::Vector3i& tri = ref.mesh->triangles[hit.triangle];
   const Vec3 v0 = ref.mesh->vertices[tri[0]].cast<double>(),
              v1 = ref.mesh->vertices[tri[1]].cast<double>(),
              v2 = ref.mesh->vertices[tri[2]].cast<double>();
-  const Pose pose = embree.pose(hit.mesh, time);
+  const Pose& pose = embree.pose_now(hit.mesh);
   Vec3 normal = (pose.linear() * (v1 - v0).cross(v2 - v0)).normalized();
   const bool front = normal.dot(dir) < 0;
   if (!front) normal = -normal;
@@ -122,28 +122,32 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
 }
 
 // Direct light from the sun on a diffuse surface (the sun is too small to hit by chance).
-Rgb sun_light(const EmbreeScene& embree, const Surface& s, const Vec3& origin, Vec2 u) {
+Rgb sun_light(const EmbreeScene& embree, const Surface& s, const Vec3& origin, Vec2 u,
+              std::uint64_t& rays) {
   const Environment& e = embree.scene().environment;
   const Vec3 to_sun = cone_direction(e.sun_direction, e.sun_angular_radius, u);
   const double cos_n = to_sun.dot(s.normal);
-  if (cos_n <= 0 || embree.occluded(false, origin, to_sun, std::numeric_limits<double>::infinity()))
+  if (cos_n <= 0) return Rgb::Zero();
+  ++rays;
+  if (embree.occluded(false, origin, to_sun, std::numeric_limits<double>::infinity()))
     return Rgb::Zero();
   return s.albedo.cwiseProduct(e.sun_irradiance.cast<double>()) * (cos_n / kPi);
 }
 
-Rgb trace_path(const EmbreeScene& embree, Vec3 origin, Vec3 dir, double time, int max_bounces,
-               Sampler& sampler) {
+Rgb trace_path(const EmbreeScene& embree, Vec3 origin, Vec3 dir, int max_bounces, Sampler& sampler,
+               std::uint64_t& rays) {
   const Environment& env = embree.scene().environment;
   Rgb radiance = Rgb::Zero(), throughput = Rgb::Ones();
   bool sun_visible = true;  // camera rays and specular bounces may see the sun disc itself
   for (int bounce = 0; bounce <= max_bounces; ++bounce) {
     const Hit hit = embree.intersect(origin, dir);
+    ++rays;
     if (!hit.found) {
       radiance += throughput.cwiseProduct(sky_radiance(env, dir) +
                                           (sun_visible ? sun_radiance(env, dir) : Rgb::Zero()));
       break;
     }
-    const Surface s = surface_at(embree, hit, origin, dir, time);
+    const Surface s = surface_at(embree, hit, origin, dir);
     const Material& m = *s.material;
     if (m.kind == Material::Kind::Emissive) {
       radiance += throughput.cwiseProduct(m.emission.cast<double>());
@@ -157,7 +161,7 @@ Rgb trace_path(const EmbreeScene& embree, Vec3 origin, Vec3 dir, double time, in
     if (m.kind == Material::Kind::Glossy)
       diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
     if (diffuse) {
-      radiance += throughput.cwiseProduct(sun_light(embree, s, above, light_sample));
+      radiance += throughput.cwiseProduct(sun_light(embree, s, above, light_sample, rays));
       throughput = throughput.cwiseProduct(s.albedo);
       origin = above, dir = cosine_direction(s.normal, lobe_sample), sun_visible = false;
     } else if (m.kind == Material::Kind::Glass) {
@@ -188,13 +192,15 @@ Rgb trace_path(const EmbreeScene& embree, Vec3 origin, Vec3 dir, double time, in
 }  // namespace
 
 Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const FramePair& frames,
-                        const RenderOptions& options) {
+                        const RenderOptions& options, RenderStats* stats) {
   embree.set_times(frames.time, frames.next_time);
   const int W = projection.width, H = projection.height;
   Image<float> image(W, H, 3);
   const Vec3 origin = frames.rig.translation();
   const Mat3 rotation = frames.rig.linear();
+  std::atomic<std::uint64_t> rays{0};
   tbb::parallel_for(0, H, [&](int y) {
+    std::uint64_t row_rays = 0;
     for (int x = 0; x < W; ++x) {
       const std::uint64_t key =
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
@@ -203,12 +209,14 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
         Sampler sampler(key, i);
         const Vec2 jitter = sampler.next();
         const Vec3 dir = (rotation * projection.ray(Vec2(x, y) + jitter)).normalized();
-        sum += trace_path(embree, origin, dir, frames.time, options.max_bounces, sampler);
+        sum += trace_path(embree, origin, dir, options.max_bounces, sampler, row_rays);
       }
       const Rgb mean = sum / std::max(1, options.samples_per_pixel);
       for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = float(mean[c]);
     }
+    rays += row_rays;
   });
+  if (stats) stats->rays = rays;
   return image;
 }
 

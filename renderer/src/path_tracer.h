@@ -6,6 +6,6 @@
 namespace flowscape {
 
 Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const FramePair& frames,
-                        const RenderOptions& options);
+                        const RenderOptions& options, RenderStats* stats);
 
 }  // namespace flowscape

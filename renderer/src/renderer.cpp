@@ -19,8 +19,8 @@ Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Renderer::~Renderer() = default;
 
 Image<float> Renderer::color(const Projection& projection, const FramePair& frames,
-                             const RenderOptions& options) {
-  return path_trace(impl_->embree, projection, frames, options);
+                             const RenderOptions& options, RenderStats* stats) {
+  return path_trace(impl_->embree, projection, frames, options, stats);
 }
 
 GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair& frames,
@@ -42,8 +42,7 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair
       double target_distance = std::numeric_limits<double>::infinity();
       if (hit.found) {
         const Vec3 point = origin + hit.distance * direction;
-        const Vec3 moved =
-            r.pose(hit.mesh, frames.next_time) * (r.pose(hit.mesh, frames.time).inverse() * point);
+        const Vec3 moved = r.pose_next(hit.mesh) * (r.pose_now(hit.mesh).inverse() * point);
         target_direction = moved - next_origin;
         target_distance = target_direction.norm();
         target_direction /= target_distance;

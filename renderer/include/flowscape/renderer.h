@@ -31,6 +31,10 @@ struct RenderOptions {
       0;  // with the pixel, the sample and the dimension, seeds every random number
 };
 
+struct RenderStats {
+  std::uint64_t rays = 0;  // camera, bounce and shadow rays traced
+};
+
 class Renderer {
  public:
   explicit Renderer(const Scene& scene);
@@ -47,7 +51,7 @@ class Renderer {
   // and emissive surfaces, sun (sampled directly) and sky, Russian roulette, a low-discrepancy
   // sampler (R2 per dimension pair, shifted per pixel). The same bytes for any thread count.
   Image<float> color(const Projection& projection, const FramePair& frames,
-                     const RenderOptions& options = {});
+                     const RenderOptions& options = {}, RenderStats* stats = nullptr);
 
  private:
   struct Impl;
