@@ -23,49 +23,63 @@ Image<float> Renderer::color(const Projection& projection, const FramePair& fram
   return path_trace(impl_->embree, projection, frames, options, stats);
 }
 
+namespace {
+
+struct PixelTruth {
+  float u = kUnknownFlow, v = kUnknownFlow, depth;
+  std::uint8_t semantic, valid = 0;
+  std::uint16_t instance = 0;
+};
+
+// Ground truth of the ray through one pixel centre (see Renderer::ground_truth).
+PixelTruth trace_truth(const EmbreeScene& scene, const Projection& projection,
+                       const FramePair& frames, FlowMode mode, Vec2 pixel) {
+  const Vec3 origin = frames.rig.translation(), next_origin = frames.next_rig.translation();
+  const Vec3 direction = (frames.rig.linear() * projection.ray(pixel)).normalized();
+  const Hit hit = scene.intersect(origin, direction);
+  PixelTruth truth{kUnknownFlow, kUnknownFlow, float(hit.distance),
+                   std::uint8_t(SemanticClass::Sky)};
+  Vec3 target_direction = direction;  // world frame, seen from the rig at next_time
+  double target_distance = std::numeric_limits<double>::infinity();
+  if (hit.found) {
+    const Vec3 point = origin + hit.distance * direction;
+    const Vec3 moved = scene.pose_next(hit.mesh) * (scene.pose_now(hit.mesh).inverse() * point);
+    target_direction = moved - next_origin;
+    target_distance = target_direction.norm();
+    target_direction /= target_distance;
+    truth.semantic = std::uint8_t(scene.mesh(hit.mesh).mesh->classes[hit.triangle]);
+    truth.instance = scene.mesh(hit.mesh).instance;
+  }
+  const auto target = projection.project(frames.next_rig.linear().transpose() * target_direction);
+  if (!target) return truth;
+  double u = target->x() - pixel.x();
+  if (projection.kind == Projection::Kind::Equirectangular) {
+    const int W = projection.width;
+    const double classic = (target->x() >= W ? target->x() - W : target->x()) - pixel.x();
+    u = mode == FlowMode::Wrap360 ? wrap_360(classic, W) : classic;
+  }
+  truth.u = float(u), truth.v = float(target->y() - pixel.y());
+  truth.valid = !scene.occluded(true, next_origin, target_direction, target_distance);
+  return truth;
+}
+
+}  // namespace
+
 GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair& frames,
                                    FlowMode mode) {
-  EmbreeScene& r = impl_->embree;
-  r.set_times(frames.time, frames.next_time);
+  EmbreeScene& scene = impl_->embree;
+  scene.set_times(frames.time, frames.next_time);
   const int W = projection.width, H = projection.height;
   GroundTruth gt{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1), Image<std::uint16_t>(W, H, 1),
                  Image<float>(W, H, 1), Image<std::uint8_t>(W, H, 1)};
-  const Vec3 origin = frames.rig.translation(), next_origin = frames.next_rig.translation();
-  const Mat3 rotation = frames.rig.linear(), next_rotation = frames.next_rig.linear();
-  const bool panorama = projection.kind == Projection::Kind::Equirectangular;
   tbb::parallel_for(0, H, [&](int y) {
     for (int x = 0; x < W; ++x) {
-      const Vec2 pixel(x + 0.5, y + 0.5);
-      const Vec3 direction = (rotation * projection.ray(pixel)).normalized();
-      const Hit hit = r.intersect(origin, direction);
-      Vec3 target_direction;  // world frame, from the rig at next_time
-      double target_distance = std::numeric_limits<double>::infinity();
-      if (hit.found) {
-        const Vec3 point = origin + hit.distance * direction;
-        const Vec3 moved = r.pose_next(hit.mesh) * (r.pose_now(hit.mesh).inverse() * point);
-        target_direction = moved - next_origin;
-        target_distance = target_direction.norm();
-        target_direction /= target_distance;
-        *gt.semantic.pixel(x, y) = std::uint8_t(r.mesh(hit.mesh).mesh->classes[hit.triangle]);
-        *gt.instance.pixel(x, y) = r.mesh(hit.mesh).instance;
-      } else {
-        target_direction = direction;
-        *gt.semantic.pixel(x, y) = std::uint8_t(SemanticClass::Sky);
-      }
-      *gt.depth.pixel(x, y) = float(hit.distance);
-      const auto target = projection.project(next_rotation.transpose() * target_direction);
-      float* f = gt.flow.pixel(x, y);
-      if (!target) {
-        f[0] = f[1] = kUnknownFlow;
-        continue;
-      }
-      double u = target->x() - pixel.x();
-      if (panorama) {
-        const double classic = (target->x() >= W ? target->x() - W : target->x()) - pixel.x();
-        u = mode == FlowMode::Wrap360 ? wrap_360(classic, W) : classic;
-      }
-      f[0] = float(u), f[1] = float(target->y() - pixel.y());
-      *gt.valid.pixel(x, y) = !r.occluded(true, next_origin, target_direction, target_distance);
+      const PixelTruth t = trace_truth(scene, projection, frames, mode, Vec2(x + 0.5, y + 0.5));
+      gt.flow.pixel(x, y)[0] = t.u, gt.flow.pixel(x, y)[1] = t.v;
+      *gt.semantic.pixel(x, y) = t.semantic;
+      *gt.instance.pixel(x, y) = t.instance;
+      *gt.depth.pixel(x, y) = t.depth;
+      *gt.valid.pixel(x, y) = t.valid;
     }
   });
   return gt;
