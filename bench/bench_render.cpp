@@ -99,26 +99,15 @@ int main(int argc, char** argv) {
   // cube rig + stitch
   const CubeToErp map = make_cube_to_erp(F, H);
   start = std::chrono::steady_clock::now();
-  Image<float> color_cube(F, 6 * F, 3), flow_cube(F, 6 * F, 2);
-  Image<std::uint8_t> semantic_cube(F, 6 * F, 1);
-  double primary_only = 0;
-  for (Face face : kFaces) {
-    const Projection projection = Projection::cube_face(face, F);
-    const auto face_start = std::chrono::steady_clock::now();
-    const GroundTruth truth = renderer.ground_truth(projection, frames);
-    primary_only += seconds_since(face_start);
-    const Image<float> color = renderer.color(projection, frames, options);
-    std::copy(color.data.begin(), color.data.end(), face_view(color_cube.view(), face).data);
-    std::copy(truth.flow.data.begin(), truth.flow.data.end(),
-              face_view(flow_cube.view(), face).data);
-    std::copy(truth.semantic.data.begin(), truth.semantic.data.end(),
-              face_view(semantic_cube.view(), face).data);
-  }
+  render_cube(renderer, F, frames, nullptr);
+  const double primary_only = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  const CubeFrame cube = render_cube(renderer, F, frames, &options);
   const double render_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  resample_bilinear(map.sampling, color_cube);
-  cube_to_erp_flow(map, {flow_cube.view()}, FlowMode::Wrap360);
-  resample_nearest(map.sampling, semantic_cube);
+  resample_bilinear(map.sampling, cube.color);
+  cube_to_erp_flow(map, {cube.truth.flow.view(), cube.truth.instance.view()}, FlowMode::Wrap360);
+  resample_nearest(map.sampling, cube.truth.semantic);
   const double stitch_seconds = seconds_since(start);
   std::printf(
       "  panoramic frame, 6 x %d^2 faces -> %d x %d: render %.2f s + stitch %.3f s = %.2f s\n", F,

@@ -21,23 +21,6 @@ FramePair yaw_left(double degrees) {
   return frames;
 }
 
-// The six faces of one frame stacked into a cubemap (N x 6N), as the stitcher takes them.
-struct CubeTruth {
-  Image<float> flow;
-  Image<std::uint16_t> instance;
-};
-
-CubeTruth render_cube(Renderer& renderer, int N, const FramePair& frames) {
-  CubeTruth cube{Image<float>(N, 6 * N, 2), Image<std::uint16_t>(N, 6 * N, 1)};
-  for (Face face : kFaces) {
-    const GroundTruth gt = renderer.ground_truth(Projection::cube_face(face, N), frames);
-    std::copy(gt.flow.data.begin(), gt.flow.data.end(), face_view(cube.flow.view(), face).data);
-    std::copy(gt.instance.data.begin(), gt.instance.data.end(),
-              face_view(cube.instance.view(), face).data);
-  }
-  return cube;
-}
-
 }  // namespace
 
 TEST_CASE("a pure camera rotation gives the rotation flow in every face and in ERP") {
@@ -142,9 +125,10 @@ TEST_CASE("stitched cube flow and direct ERP flow agree away from object edges")
   frames.next_rig = Pose(Eigen::Translation3d(0.3, 0.1, 0)) *
                     Pose(Eigen::AngleAxisd(0.05, Vec3(0.2, 0.1, 1).normalized()));
   const int N = 128, H = 128, W = 2 * H;
-  const CubeTruth cube = render_cube(renderer, N, frames);
-  const FlowOutput stitched = cube_to_erp_flow(
-      make_cube_to_erp(N, H), {cube.flow.view(), cube.instance.view()}, FlowMode::Wrap360);
+  const CubeFrame cube = render_cube(renderer, N, frames, nullptr);
+  const FlowOutput stitched =
+      cube_to_erp_flow(make_cube_to_erp(N, H), {cube.truth.flow.view(), cube.truth.instance.view()},
+                       FlowMode::Wrap360);
   const GroundTruth direct = renderer.ground_truth(Projection::equirectangular(H), frames);
   std::vector<double> errors;
   for (int y = 2; y < H - 2; ++y)

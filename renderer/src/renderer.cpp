@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "embree_scene.h"
+#include "flowscape/stitch.h"
 #include "path_tracer.h"
 
 namespace flowscape {
@@ -83,6 +84,32 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair
     }
   });
   return gt;
+}
+
+namespace {
+
+template <class T>
+void put_face(Image<T>& cube, Face face, const Image<T>& image) {
+  if (cube.data.empty()) cube = Image<T>(image.width, 6 * image.width, image.channels);
+  std::copy(image.data.begin(), image.data.end(), face_view(cube.view(), face).data);
+}
+
+}  // namespace
+
+CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,
+                      const RenderOptions* color_options, FlowMode mode) {
+  CubeFrame cube;
+  GroundTruth& all = cube.truth;
+  for (Face face : kFaces) {
+    const Projection projection = Projection::cube_face(face, face_size);
+    const GroundTruth gt = renderer.ground_truth(projection, frames, mode);
+    put_face(all.flow, face, gt.flow), put_face(all.semantic, face, gt.semantic);
+    put_face(all.instance, face, gt.instance), put_face(all.depth, face, gt.depth);
+    put_face(all.valid, face, gt.valid);
+    if (color_options)
+      put_face(cube.color, face, renderer.color(projection, frames, *color_options));
+  }
+  return cube;
 }
 
 }  // namespace flowscape

@@ -58,4 +58,13 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
+// The cube rig: the six 90-degree faces at one optical centre, rendered for the same frame pair and
+// stacked into N x 6N images in kFaces order (the layout stitch.h takes).
+struct CubeFrame {
+  Image<float> color;  // linear RGB; empty when not asked for
+  GroundTruth truth;
+};
+CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,
+                      const RenderOptions* color_options, FlowMode mode = FlowMode::Wrap360);
+
 }  // namespace flowscape
