@@ -115,24 +115,31 @@ struct TapFlow {
   bool known = false;
 };
 
+// kInstances: whether `in` has an instance image (a template flag, so the per-tap test folds away).
+template <bool kInstances = true>
 TapFlow source_flow(const FlowInput& in, int index) {
   const float* f = in.flow.data + 2 * std::size_t(index);
-  return {f[0], f[1], in.instance.data ? in.instance.data[index] : std::uint16_t(0),
+  return {f[0], f[1], kInstances && in.instance.data ? in.instance.data[index] : std::uint16_t(0),
           is_known_flow(f[0], f[1])};
 }
 
-// Bilinear blend of the known flows of the taps that share the nearest tap's instance.
-TapFlow blend_flows(const Stencil& st, const TapFlow (&taps)[4]) {
-  const std::uint16_t instance = taps[st.nearest_tap()].instance;
+// Bilinear blend of the known flows of the taps that share the nearest tap's instance;
+// tap_at(k) gives tap k.
+template <class TapAt>
+TapFlow blend_flows(const Stencil& st, const TapAt& tap_at) {
+  const std::uint16_t instance = tap_at(st.nearest_tap()).instance;
   const auto w = bilinear_weights(st);
   float u = 0, v = 0, total = 0;
   for (int k = 0; k < 4; ++k) {
-    const bool usable = taps[k].known && taps[k].instance == instance;
-    u += usable ? w[k] * taps[k].u : 0.f, v += usable ? w[k] * taps[k].v : 0.f;
+    const TapFlow tap = tap_at(k);
+    const bool usable = tap.known && tap.instance == instance;
+    // select, not multiply: 0 * NaN would poison the sum
+    u += usable ? w[k] * tap.u : 0.f, v += usable ? w[k] * tap.v : 0.f;
     total += usable ? w[k] : 0.f;
   }
   if (total <= 0) return {0, 0, instance, false};
-  return {u / total, v / total, instance, true};
+  const float normalise = 1 / total;
+  return {u * normalise, v * normalise, instance, true};
 }
 
 std::uint8_t source_valid(const Sampling& sampling, const Stencil& st, const FlowInput& in) {
@@ -147,9 +154,7 @@ std::vector<TapFlow> apron_flows(const CubeToErp& map, const FlowInput& in) {
   tbb::parallel_for(std::size_t(0), flows.size(), [&](std::size_t a) {
     const Stencil& st = map.sampling.apron[a];
     const ApronPixel& pixel = map.apron_pixels[a];
-    TapFlow taps[4];
-    for (int k = 0; k < 4; ++k) taps[k] = source_flow(in, st.tap[k]);
-    TapFlow blended = blend_flows(st, taps);
+    TapFlow blended = blend_flows(st, [&](int k) { return source_flow(in, st.tap[k]); });
     if (blended.known) {
       const Vec3 target =
           ray_from_cube(pixel.neighbour, pixel.position + Vec2(blended.u, blended.v), N);
@@ -300,31 +305,17 @@ FLOWSCAPE_RESAMPLE(float)
 
 namespace {
 
-// blend_flows for a stencil whose taps are all face pixels, written out for speed.
-template <bool kInstances>
-TapFlow blend_face_taps(const Stencil& st, const FlowInput& in) {
-  const auto w = bilinear_weights(st);
-  const std::uint16_t instance = kInstances ? in.instance.data[st.tap[st.nearest_tap()]] : 0;
-  float u = 0, v = 0, total = 0;
-  for (int k = 0; k < 4; ++k) {
-    const float* f = in.flow.data + 2 * std::size_t(st.tap[k]);
-    const bool usable =
-        is_known_flow(f[0], f[1]) && (!kInstances || in.instance.data[st.tap[k]] == instance);
-    // select, not multiply: 0 * NaN would poison the sum
-    u += usable ? w[k] * f[0] : 0.f, v += usable ? w[k] * f[1] : 0.f, total += usable ? w[k] : 0.f;
-  }
-  if (total <= 0) return {0, 0, instance, false};
-  const float normalise = 1 / total;
-  return {u * normalise, v * normalise, instance, true};
-}
-
+// The blended flow of a destination pixel: face pixels read straight from the cube (the common
+// case, with the instance test compiled in or out), apron pixels from their precomputed flows.
 TapFlow blend_stencil(const Stencil& st, const FlowInput& in, const std::vector<TapFlow>& apron) {
-  if ((st.tap[0] | st.tap[1] | st.tap[2] | st.tap[3]) >= 0)
-    return in.instance.data ? blend_face_taps<true>(st, in) : blend_face_taps<false>(st, in);
-  TapFlow taps[4];
-  for (int k = 0; k < 4; ++k)
-    taps[k] = st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
-  return blend_flows(st, taps);
+  if ((st.tap[0] | st.tap[1] | st.tap[2] | st.tap[3]) >= 0) {
+    if (in.instance.data)
+      return blend_flows(st, [&](int k) { return source_flow<true>(in, st.tap[k]); });
+    return blend_flows(st, [&](int k) { return source_flow<false>(in, st.tap[k]); });
+  }
+  return blend_flows(st, [&](int k) {
+    return st.tap[k] >= 0 ? source_flow(in, st.tap[k]) : apron[-1 - st.tap[k]];
+  });
 }
 
 // A stencil's taps lie on two face rows far apart in memory; asking for their cache lines a few
@@ -463,14 +454,12 @@ FlowOutput erp_to_cube_flow(const ErpToCube& map, const FlowInput& erp) {
     for (int i = 0; i < N; ++i) {
       const std::size_t index = std::size_t(row) * N + i;
       const Stencil& st = map.sampling.stencils[index];
-      TapFlow taps[4];
-      for (int k = 0; k < 4; ++k) {
-        taps[k] = source_flow(erp, st.tap[k]);
-        taps[k].u = wrap_360(taps[k].u, W);  // classic flow blends like 360-degree flow
-        if (map.over_pole[index] >> k & 1)
-          taps[k].v = -taps[k].v;  // rows count the other way there
-      }
-      const TapFlow blended = blend_flows(st, taps);
+      const TapFlow blended = blend_flows(st, [&](int k) {
+        TapFlow tap = source_flow(erp, st.tap[k]);
+        tap.u = float(wrap_360(tap.u, W));  // classic flow blends like 360-degree flow
+        if (map.over_pole[index] >> k & 1) tap.v = -tap.v;  // rows count the other way there
+        return tap;
+      });
       const Vec2 centre{i + 0.5, row % N + 0.5};
       std::optional<Vec2> flow;
       if (blended.known) {
