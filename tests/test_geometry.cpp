@@ -110,6 +110,11 @@ TEST_CASE("360-degree flow takes the short way round (paper Eq. 3, -W/2 < u <= W
   CHECK(wrap_360(501, W) == -499);
   CHECK(wrap_360(990, W) == -10);
   CHECK(wrap_360(-990, W) == 10);
+  // classic flow: the target keeps its column in [0, W), so crossing the seam costs a full W
+  CHECK(erp_flow_u(-10, 995.5, W, FlowMode::Wrap360) == -10);
+  CHECK(erp_flow_u(20, 995.5, W, FlowMode::Classic) == 20 - W);
+  CHECK(erp_flow_u(-20, 5.5, W, FlowMode::Classic) == -20 + W);
+  CHECK(erp_flow_u(3, 500.5, W, FlowMode::Classic) == 3);
 }
 
 TEST_CASE("fast_atan2 agrees with std::atan2 to 1e-10 rad in every octant") {

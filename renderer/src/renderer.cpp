@@ -54,11 +54,8 @@ PixelTruth trace_truth(const EmbreeScene& scene, const Projection& projection,
   const auto target = projection.project(frames.next_rig.linear().transpose() * target_direction);
   if (!target) return truth;
   double u = target->x() - pixel.x();
-  if (projection.kind == Projection::Kind::Equirectangular) {
-    const int W = projection.width;
-    const double classic = (target->x() >= W ? target->x() - W : target->x()) - pixel.x();
-    u = mode == FlowMode::Wrap360 ? wrap_360(classic, W) : classic;
-  }
+  if (projection.kind == Projection::Kind::Equirectangular)
+    u = erp_flow_u(wrap_360(u, projection.width), pixel.x(), projection.width, mode);
   truth.u = float(u), truth.v = float(target->y() - pixel.y());
   truth.valid = !scene.occluded(true, next_origin, target_direction, target_distance);
   return truth;

@@ -4,11 +4,6 @@
 
 namespace flowscape {
 
-Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double theta0,
-                       double theta1) {
-  return {L * (phi - phi0) * std::cos(theta1), L * (theta - theta0)};
-}
-
 Angles angles_from_erp(Vec2 p, int erp_width) {
   const double L = erp_width / (2 * kPi);
   return {p.x() / L - kPi, p.y() / L - kPi / 2};

@@ -422,9 +422,7 @@ void flow_row(const FlowRows& rows, int y) {
   float* o = rows.out.flow.pixel(0, y);
   for (int x = 0; x < W; ++x) {
     const float u = r.u[x] * pixels_per_radian, v = r.v[x] * pixels_per_radian;
-    const float target = x + 0.5f + u;  // classic flow does not wrap round the seam
-    const float classic_u = target >= W ? u - W : target < 0 ? u + W : u;
-    o[2 * x] = r.known[x] ? (rows.mode == FlowMode::Wrap360 ? u : classic_u) : kUnknownFlow;
+    o[2 * x] = r.known[x] ? float(erp_flow_u(u, x + 0.5, W, rows.mode)) : kUnknownFlow;
     o[2 * x + 1] = r.known[x] ? v : kUnknownFlow;
   }
 }

@@ -65,13 +65,14 @@ inline float fast_atan2(float y, float x) {
 }
 
 // Paper Eq. 1: x = L (phi - phi0) cos(theta1), y = L (theta - theta0).
-Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double theta0,
-                       double theta1);
+inline Vec2 paper_forward_erp(double phi, double theta, double L, double phi0, double theta0,
+                              double theta1) {
+  return {L * (phi - phi0) * std::cos(theta1), L * (theta - theta0)};
+}
 
 // Eq. 1 with L = W / (2 pi), phi0 = -pi, theta0 = -pi/2, theta1 = 0 (requires W = 2H).
 inline Vec2 erp_from_angles(Angles a, int erp_width) {
-  const double L = erp_width / (2 * kPi);  // Eq. 1 with cos(theta1) = 1, kept inline for speed
-  return {L * (a.phi + kPi), L * (a.theta + kPi / 2)};
+  return paper_forward_erp(a.phi, a.theta, erp_width / (2 * kPi), -kPi, -kPi / 2, 0.0);
 }
 Angles angles_from_erp(Vec2 p, int erp_width);
 
@@ -136,6 +137,14 @@ enum class FlowMode { Wrap360, Classic };
 inline double wrap_360(double u, int erp_width) {
   const double W = erp_width;
   return u > W / 2 ? u - W : u <= -W / 2 ? u + W : u;
+}
+
+// The horizontal ERP flow in the chosen form, from its 360-degree form at column source_x:
+// classic flow adds or removes W where the target crosses the seam.
+inline double erp_flow_u(double u360, double source_x, int erp_width, FlowMode mode) {
+  if (mode == FlowMode::Wrap360) return u360;
+  const double target = source_x + u360;
+  return target >= erp_width ? u360 - erp_width : target < 0 ? u360 + erp_width : u360;
 }
 
 // Middlebury's marker for unknown flow (any component above 1e9 means unknown).
