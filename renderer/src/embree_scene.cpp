@@ -45,32 +45,13 @@ std::string mesh_name(const MeshRef& ref) {
                        : "actor " + std::to_string(ref.actor) + " part " + std::to_string(ref.part);
 }
 
-Hit intersect_scene(RTCScene scene, const Vec3& origin, const Vec3& direction) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = float(origin.x()), rh.ray.org_y = float(origin.y()),
-  rh.ray.org_z = float(origin.z());
-  rh.ray.dir_x = float(direction.x()), rh.ray.dir_y = float(direction.y()),
-  rh.ray.dir_z = float(direction.z());
-  rh.ray.tnear = 0, rh.ray.tfar = kInfinity, rh.ray.mask = ~0u;
-  rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar};
-}
-
-bool occluded_in(RTCScene scene, const Vec3& origin, const Vec3& direction, double distance) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+RTCRay make_ray(const Vec3& origin, const Vec3& direction, float tfar) {
   RTCRay ray{};
   ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
-  ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y()),
+  ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y());
   ray.dir_z = float(direction.z());
-  ray.tnear = 0, ray.mask = ~0u;
-  ray.tfar = std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin));
-  rtcOccluded1(scene, &context, &ray);
-  return ray.tfar < 0;
+  ray.tnear = 0, ray.tfar = tfar, ray.mask = ~0u;
+  return ray;
 }
 
 void require_valid_materials(const Mesh& mesh, std::size_t material_count,
@@ -140,12 +121,25 @@ void EmbreeScene::set_times(double now, double next) {
 }
 
 Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
-  return intersect_scene(now_, origin, direction);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray = make_ray(origin, direction, kInfinity);
+  rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(now_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  return {true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar};
 }
 
 bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& direction,
                            double distance) const {
-  return occluded_in(at_next ? next_ : now_, origin, direction, distance);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray =
+      make_ray(origin, direction,
+               std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin)));
+  rtcOccluded1(at_next ? next_ : now_, &context, &ray);
+  return ray.tfar < 0;
 }
 
 }  // namespace flowscape
