@@ -111,8 +111,8 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
   const Material& m =
       materials[ref.mesh->materials.empty() ? 0 : ref.mesh->materials[hit.triangle]];
   Rgb albedo = m.albedo.cast<double>();
-  if (m.checker_size >
-      0) {  // cells centred on multiples of the size, so planes there are not split
+  // checker cells are centred on multiples of the size, so planes there are not split
+  if (m.checker_size > 0) {
     const Vec3 cell = ((pose.inverse() * position) / m.checker_size).array() + 0.5;
     const long parity =
         long(std::floor(cell.x())) + long(std::floor(cell.y())) + long(std::floor(cell.z()));
