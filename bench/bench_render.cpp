@@ -1,7 +1,7 @@
 // Renderer throughput on a street-like fixture (ground, 300 buildings, 60 driving boxes, sun and
 // sky): primary-ray ground truth and path-traced colour in million rays per second per core, and
 // seconds per panoramic frame (6 x F^2 faces stitched to H x 2H ERP) next to a primary-rays-only
-// frame. Usage: bench_render [face size] [ERP height] [samples per pixel] [threads]
+// frame. Usage: bench_render [face size (0: no cube rig)] [ERP height] [samples per pixel] [threads]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -95,6 +95,8 @@ int main(int argc, char** argv) {
       "  %d x %d ERP direct: colour %.2f s + flow/semantics %.2f s = %.2f s per frame"
       "   (target < 2 s on 2 cores)\n",
       erp.height, erp.width, color_seconds, gt_seconds, color_seconds + gt_seconds);
+
+  if (F <= 0) return 0;  // face size 0: the direct ERP figures only
 
   // cube rig + stitch
   const CubeToErp map = make_cube_to_erp(F, H);

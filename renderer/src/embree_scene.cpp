@@ -1,5 +1,6 @@
 #include "embree_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -52,6 +53,19 @@ RTCRay make_ray(const Vec3& origin, const Vec3& direction, float tfar) {
   ray.dir_z = float(direction.z());
   ray.tnear = 0, ray.tfar = tfar, ray.mask = ~0u;
   return ray;
+}
+
+// Copies the rays of a bundle into an Embree packet (RTCRay16 or the ray part of RTCRayHit16).
+void fill_packet(const BundleRay* rays, int count, RTCRay16& packet, int* valid) {
+  for (int i = 0; i < kBundleSize; ++i) {
+    valid[i] = i < count && rays[i].active ? -1 : 0;
+    if (!valid[i]) continue;
+    const Vec3 &o = rays[i].origin, &d = rays[i].direction;
+    packet.org_x[i] = float(o.x()), packet.org_y[i] = float(o.y()), packet.org_z[i] = float(o.z());
+    packet.dir_x[i] = float(d.x()), packet.dir_y[i] = float(d.y()), packet.dir_z[i] = float(d.z());
+    packet.tnear[i] = 0, packet.tfar[i] = kInfinity, packet.mask[i] = ~0u;
+    packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
+  }
 }
 
 void require_valid_materials(const Mesh& mesh, std::size_t material_count,
@@ -140,6 +154,31 @@ bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& directi
                std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin)));
   rtcOccluded1(at_next ? next_ : now_, &context, &ray);
   return ray.tfar < 0;
+}
+
+void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[kBundleSize];
+  fill_packet(rays, count, packet.ray, valid);
+  std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
+  std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
+  rtcIntersect16(valid, now_, &context, &packet);
+  for (int i = 0; i < count; ++i)
+    hits[i] = !valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+                  ? Hit{}
+                  : Hit{true, packet.hit.instID[0][i], packet.hit.primID[i], packet.ray.tfar[i]};
+}
+
+void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) RTCRay16 packet;
+  alignas(64) int valid[kBundleSize];
+  fill_packet(rays, count, packet, valid);
+  rtcOccluded16(valid, now_, &context, &packet);
+  for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }
 
 }  // namespace flowscape

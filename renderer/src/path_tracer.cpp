@@ -21,22 +21,34 @@ std::uint64_t mix_bits(std::uint64_t x) {  // splitmix64 finaliser
 
 double unit(std::uint64_t bits) { return double(bits >> 11) * 0x1.0p-53; }
 
+// The Cranley-Patterson rotation of each pair of sample dimensions in one pixel: a hash of the
+// pixel, the seed and the pair.
+std::vector<Vec2> pixel_shifts(std::uint64_t pixel_key, int pairs) {
+  std::vector<Vec2> shifts(pairs);
+  for (int p = 0; p < pairs; ++p) {
+    const std::uint64_t h = mix_bits(pixel_key ^ mix_bits(std::uint64_t(p + 1)));
+    shifts[p] = {unit(h), unit(mix_bits(h))};
+  }
+  return shifts;
+}
+
 // Sample `index` of a pixel: the R2 sequence (Roberts 2018) for each pair of dimensions, shifted
-// by a hash of the pixel, the seed and the pair (Cranley-Patterson rotation).
+// by the pixel's rotation of that pair.
 class Sampler {
  public:
-  Sampler(std::uint64_t pixel_key, int index) : key_(pixel_key), index_(index) {}
+  Sampler() = default;
+  Sampler(const std::vector<Vec2>& shifts, int index) : shifts_(&shifts), index_(index) {}
   Vec2 next() {
     constexpr double kA1 = 0.7548776662466927, kA2 = 0.5698402909980532;  // 1/phi2, 1/phi2^2
-    const std::uint64_t h = mix_bits(key_ ^ mix_bits(std::uint64_t(++pair_)));
+    const Vec2 shift = (*shifts_)[pair_++];
     const double n = index_ + 1;
-    const double a = unit(h) + n * kA1, b = unit(mix_bits(h)) + n * kA2;
+    const double a = shift.x() + n * kA1, b = shift.y() + n * kA2;
     return {a - std::floor(a), b - std::floor(b)};
   }
 
  private:
-  std::uint64_t key_;
-  int index_, pair_ = 0;
+  const std::vector<Vec2>* shifts_ = nullptr;
+  int index_ = 0, pair_ = 0;
 };
 
 // Orthonormal frame around n (Duff et al. 2017).
@@ -50,21 +62,17 @@ Mat3 frame_around(const Vec3& n) {
 }
 
 Vec3 cosine_direction(const Vec3& n, Vec2 u) {
-  const double r = std::sqrt(u.x()), phi = 2 * kPi * u.y();
-  return frame_around(n) *
-         Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x())));
-}
-
-// A direction within `angle` of `axis`, uniform over that cone's solid angle.
-Vec3 cone_direction(const Vec3& axis, double angle, Vec2 u) {
-  const double cos_t = 1 - u.x() * (1 - std::cos(angle)), sin_t = std::sqrt(1 - cos_t * cos_t);
-  const double phi = 2 * kPi * u.y();
-  return frame_around(axis) * Vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t);
+  const double r = std::sqrt(u.x());
+  const SinCos phi = sin_cos(2 * kPi * u.y());
+  return frame_around(n) * Vec3(r * phi.cos, r * phi.sin, std::sqrt(std::max(0.0, 1 - u.x())));
 }
 
 Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2 * d.dot(n) * n; }
 
-double schlick(double cos_i, double f0) { return f0 + (1 - f0) * std::pow(1 - cos_i, 5); }
+double schlick(double cos_i, double f0) {
+  const double m = 1 - cos_i, m2 = m * m;
+  return f0 + (1 - f0) * m2 * m2 * m;
+}
 
 // Fresnel reflectance of a smooth dielectric; 1 for total internal reflection.
 double dielectric_fresnel(double cos_i, double eta) {  // eta = n_incident / n_transmitted
@@ -76,18 +84,36 @@ double dielectric_fresnel(double cos_i, double eta) {  // eta = n_incident / n_t
   return (rs * rs + rp * rp) / 2;
 }
 
-Rgb sky_radiance(const Environment& e, const Vec3& d) {
-  if (d.z() < 0) return e.ground.cast<double>();
-  const double t = std::sqrt(d.z());
-  return ((1 - t) * e.sky_horizon + t * e.sky_zenith).cast<double>();
-}
+// The sun and sky of an Environment, with what every sample needs computed once.
+struct Lights {
+  explicit Lights(const Environment& e)
+      : environment(e),
+        sun_frame(frame_around(e.sun_direction)),
+        sun_cos_radius(std::cos(e.sun_angular_radius)),
+        sun_irradiance(e.sun_irradiance.cast<double>()),
+        sun_disc_radiance(sun_irradiance / (2 * kPi * (1 - sun_cos_radius))) {}
 
-// Radiance of the sun disc seen along d (irradiance spread over the disc's solid angle).
-Rgb sun_radiance(const Environment& e, const Vec3& d) {
-  const double cone = std::cos(e.sun_angular_radius);
-  if (d.dot(e.sun_direction) < cone) return Rgb::Zero();
-  return e.sun_irradiance.cast<double>() / (2 * kPi * (1 - cone));
-}
+  Rgb sky_radiance(const Vec3& d) const {
+    if (d.z() < 0) return environment.ground.cast<double>();
+    const double t = std::sqrt(d.z());
+    return ((1 - t) * environment.sky_horizon + t * environment.sky_zenith).cast<double>();
+  }
+  // Radiance of the sun disc seen along d (irradiance spread over the disc's solid angle).
+  Rgb sun_radiance(const Vec3& d) const {
+    return d.dot(environment.sun_direction) < sun_cos_radius ? Rgb::Zero() : sun_disc_radiance;
+  }
+  // A direction towards the sun disc, uniform over its solid angle.
+  Vec3 sun_sample(Vec2 u) const {
+    const double cos_t = 1 - u.x() * (1 - sun_cos_radius), sin_t = std::sqrt(1 - cos_t * cos_t);
+    const SinCos phi = sin_cos(2 * kPi * u.y());
+    return sun_frame * Vec3(sin_t * phi.cos, sin_t * phi.sin, cos_t);
+  }
+
+  const Environment& environment;
+  Mat3 sun_frame;
+  double sun_cos_radius;
+  Rgb sun_irradiance, sun_disc_radiance;
+};
 
 struct Surface {
   Vec3 position, normal;  // normal faces the incoming ray
@@ -121,72 +147,106 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
   return {position, normal, front, &m, albedo};
 }
 
-// Direct light from the sun on a diffuse surface (the sun is too small to hit by chance).
-Rgb sun_light(const EmbreeScene& embree, const Surface& s, const Vec3& origin, Vec2 u,
-              std::uint64_t& rays) {
-  const Environment& e = embree.scene().environment;
-  const Vec3 to_sun = cone_direction(e.sun_direction, e.sun_angular_radius, u);
-  const double cos_n = to_sun.dot(s.normal);
-  if (cos_n <= 0) return Rgb::Zero();
-  ++rays;
-  if (embree.occluded(false, origin, to_sun, std::numeric_limits<double>::infinity()))
-    return Rgb::Zero();
-  return s.albedo.cwiseProduct(e.sun_irradiance.cast<double>()) * (cos_n / kPi);
-}
-
-Rgb trace_path(const EmbreeScene& embree, Vec3 origin, Vec3 dir, int max_bounces, Sampler& sampler,
-               std::uint64_t& rays) {
-  const Environment& env = embree.scene().environment;
+struct PathState {
+  Vec3 origin, dir;
   Rgb radiance = Rgb::Zero(), throughput = Rgb::Ones();
   bool sun_visible = true;  // camera rays and specular bounces may see the sun disc itself
-  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
-    const Hit hit = embree.intersect(origin, dir);
-    ++rays;
-    if (!hit.found) {
-      radiance += throughput.cwiseProduct(sky_radiance(env, dir) +
-                                          (sun_visible ? sun_radiance(env, dir) : Rgb::Zero()));
-      break;
-    }
-    const Surface s = surface_at(embree, hit, origin, dir);
-    const Material& m = *s.material;
-    if (m.kind == Material::Kind::Emissive) {
-      radiance += throughput.cwiseProduct(m.emission.cast<double>());
-      break;
-    }
-    const double offset = 1e-4 * (1 + s.position.norm());
-    const Vec3 above = s.position + offset * s.normal, below = s.position - offset * s.normal;
-    const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
-    const double cos_i = -dir.dot(s.normal);
-    bool diffuse = m.kind == Material::Kind::Diffuse;
-    if (m.kind == Material::Kind::Glossy)
-      diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
-    if (diffuse) {
-      radiance += throughput.cwiseProduct(sun_light(embree, s, above, light_sample, rays));
-      throughput = throughput.cwiseProduct(s.albedo);
-      origin = above, dir = cosine_direction(s.normal, lobe_sample), sun_visible = false;
-    } else if (m.kind == Material::Kind::Glass) {
-      const double eta = s.front ? 1 / 1.5 : 1.5;
-      if (choice.x() < dielectric_fresnel(cos_i, eta)) {
-        origin = above, dir = reflect(dir, s.normal);
-      } else {
-        const double cos_t = std::sqrt(1 - eta * eta * (1 - cos_i * cos_i));
-        origin = below, dir = (eta * dir + (eta * cos_i - cos_t) * s.normal).normalized();
-      }
-      sun_visible = true;
-    } else {  // Metal, or the clear coat of Glossy: a mirror blurred by the roughness
-      if (m.kind == Material::Kind::Metal) throughput = throughput.cwiseProduct(s.albedo);
-      dir = (reflect(dir, s.normal) + m.roughness * cosine_direction(s.normal, lobe_sample))
-                .normalized();
-      if (dir.dot(s.normal) <= 0) break;
-      origin = above, sun_visible = true;
-    }
-    if (bounce >= 3) {  // Russian roulette
-      const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
-      if (choice.y() >= keep) break;
-      throughput /= keep;
-    }
+};
+
+// Next-event estimation: a shadow ray towards the sun and the light it brings if unblocked.
+struct SunRay {
+  BundleRay ray;
+  Rgb light;
+};
+
+// Direct light from the sun on a diffuse surface (the sun is too small to hit by chance).
+SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
+               Vec2 u) {
+  const Vec3 to_sun = lights.sun_sample(u);
+  const double cos_n = to_sun.dot(s.normal);
+  if (cos_n <= 0) return {};
+  return {{origin, to_sun, true},
+          throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) *
+              (cos_n / kPi)};
+}
+
+// One bounce of a path at `hit`: adds what the path sees (sky, sun disc, emission), prepares the
+// sun ray and scatters. Returns whether the path goes on.
+bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, int bounce,
+             Sampler& sampler, PathState& path, SunRay& sun) {
+  Vec3 &origin = path.origin, &dir = path.dir;
+  Rgb& throughput = path.throughput;
+  if (!hit.found) {
+    path.radiance += throughput.cwiseProduct(
+        lights.sky_radiance(dir) + (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
+    return false;
   }
-  return radiance;
+  const Surface s = surface_at(embree, hit, origin, dir);
+  const Material& m = *s.material;
+  if (m.kind == Material::Kind::Emissive) {
+    path.radiance += throughput.cwiseProduct(m.emission.cast<double>());
+    return false;
+  }
+  const double offset = 1e-4 * (1 + s.position.norm());
+  const Vec3 above = s.position + offset * s.normal, below = s.position - offset * s.normal;
+  const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
+  const double cos_i = -dir.dot(s.normal);
+  bool diffuse = m.kind == Material::Kind::Diffuse;
+  if (m.kind == Material::Kind::Glossy) diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
+  if (diffuse) {
+    sun = sun_ray(lights, s, above, throughput, light_sample);
+    throughput = throughput.cwiseProduct(s.albedo);
+    origin = above, dir = cosine_direction(s.normal, lobe_sample), path.sun_visible = false;
+  } else if (m.kind == Material::Kind::Glass) {
+    const double eta = s.front ? 1 / 1.5 : 1.5;
+    if (choice.x() < dielectric_fresnel(cos_i, eta)) {
+      origin = above, dir = reflect(dir, s.normal);
+    } else {
+      const double cos_t = std::sqrt(1 - eta * eta * (1 - cos_i * cos_i));
+      origin = below, dir = (eta * dir + (eta * cos_i - cos_t) * s.normal).normalized();
+    }
+    path.sun_visible = true;
+  } else {  // Metal, or the clear coat of Glossy: a mirror blurred by the roughness
+    if (m.kind == Material::Kind::Metal) throughput = throughput.cwiseProduct(s.albedo);
+    dir = (reflect(dir, s.normal) + m.roughness * cosine_direction(s.normal, lobe_sample))
+              .normalized();
+    if (dir.dot(s.normal) <= 0) return false;
+    origin = above, path.sun_visible = true;
+  }
+  if (bounce >= 2) {  // Russian roulette
+    const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
+    if (choice.y() >= keep) return false;
+    throughput /= keep;
+  }
+  return true;
+}
+
+// Traces up to kBundleSize paths in lock step, one Embree packet per bounce and one for the sun
+// rays: the samples of one pixel stay coherent for the camera rays and the first sun rays.
+void trace_bundle(const EmbreeScene& embree, const Lights& lights, PathState* paths,
+                  Sampler* samplers, int count, int max_bounces, std::uint64_t& rays) {
+  BundleRay bundle[kBundleSize];
+  Hit hits[kBundleSize];
+  SunRay sun[kBundleSize];
+  bool blocked[kBundleSize];
+  for (int i = 0; i < count; ++i) bundle[i] = {paths[i].origin, paths[i].dir, true};
+  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
+    const int alive = int(std::count_if(bundle, bundle + count, [](auto& r) { return r.active; }));
+    if (alive == 0) break;
+    embree.intersect(bundle, count, hits);
+    rays += alive;
+    for (int i = 0; i < count; ++i) {
+      sun[i] = {};
+      if (!bundle[i].active) continue;
+      bundle[i].active = advance(embree, lights, hits[i], bounce, samplers[i], paths[i], sun[i]);
+      bundle[i].origin = paths[i].origin, bundle[i].direction = paths[i].dir;
+    }
+    BundleRay sun_rays[kBundleSize];
+    for (int i = 0; i < count; ++i) sun_rays[i] = sun[i].ray, rays += sun[i].ray.active;
+    embree.occluded(sun_rays, count, blocked);
+    for (int i = 0; i < count; ++i)
+      if (sun[i].ray.active && !blocked[i]) paths[i].radiance += sun[i].light;
+  }
 }
 
 }  // namespace
@@ -199,17 +259,26 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
   const Vec3 origin = frames.rig.translation();
   const Mat3 rotation = frames.rig.linear();
   std::atomic<std::uint64_t> rays{0};
+  const Lights lights(embree.scene().environment);
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;
     for (int x = 0; x < W; ++x) {
       const std::uint64_t key =
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
+      const std::vector<Vec2> shifts = pixel_shifts(key, 1 + 3 * (options.max_bounces + 1));
       Rgb sum = Rgb::Zero();
-      for (int i = 0; i < options.samples_per_pixel; ++i) {
-        Sampler sampler(key, i);
-        const Vec2 jitter = sampler.next();
-        const Vec3 dir = (rotation * projection.ray(Vec2(x, y) + jitter)).normalized();
-        sum += trace_path(embree, origin, dir, options.max_bounces, sampler, row_rays);
+      for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
+        const int count = std::min(kBundleSize, options.samples_per_pixel - first);
+        Sampler samplers[kBundleSize];
+        PathState paths[kBundleSize];
+        for (int i = 0; i < count; ++i) {
+          samplers[i] = Sampler(shifts, first + i);
+          const Vec2 jitter = samplers[i].next();
+          paths[i].origin = origin;
+          paths[i].dir = (rotation * projection.ray(Vec2(x, y) + jitter)).normalized();
+        }
+        trace_bundle(embree, lights, paths, samplers, count, options.max_bounces, row_rays);
+        for (int i = 0; i < count; ++i) sum += paths[i].radiance;
       }
       const Rgb mean = sum / std::max(1, options.samples_per_pixel);
       for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = float(mean[c]);

@@ -10,8 +10,8 @@ Angles angles_from_erp(Vec2 p, int erp_width) {
 }
 
 Vec3 direction_from_angles(Angles a) {
-  const double c = std::cos(a.theta);
-  return {c * std::cos(a.phi), -c * std::sin(a.phi), -std::sin(a.theta)};
+  const SinCos phi = sin_cos(a.phi), theta = sin_cos(a.theta);
+  return {theta.cos * phi.cos, -theta.cos * phi.sin, -theta.sin};
 }
 
 Vec3 direction_from_erp(Vec2 p, int erp_width) {

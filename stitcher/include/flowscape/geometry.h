@@ -29,6 +29,13 @@ struct Angles {
   double theta;  // latitude, (-pi/2, pi/2), down-positive
 };
 
+template <class T, std::size_t kTerms>
+constexpr T polynomial(T x, const T (&coefficients)[kTerms]) {  // Horner
+  T sum = coefficients[kTerms - 1];
+  for (int k = int(kTerms) - 2; k >= 0; --k) sum = coefficients[k] + x * sum;
+  return sum;
+}
+
 // atan2 without branches, so that loops over it vectorise (the stitcher calls it per pixel):
 // octant reduction, atan(z) = pi/4 + atan((z - 1) / (z + 1)) above tan(pi/8), then
 // atan(z) = z P(z^2) with P a Chebyshev interpolant of atan(z)/z on [0, tan^2(pi/8)].
@@ -41,9 +48,7 @@ inline T reduced_atan2(T y, T x, const T (&p)[kTerms]) {
   const T numerator = shifted ? small - large : small;
   const T denominator = shifted ? small + large : (large > 0 ? large : T(1));
   const T z = numerator / denominator, z2 = z * z;
-  T series = p[kTerms - 1];
-  for (int k = int(kTerms) - 2; k >= 0; --k) series = p[k] + z2 * series;
-  T angle = z * series + (shifted ? pi / 4 : T(0));
+  T angle = z * polynomial(z2, p) + (shifted ? pi / 4 : T(0));
   angle = ay > ax ? pi / 2 - angle : angle;
   angle = x < 0 ? pi - angle : angle;
   return y < 0 ? -angle : angle;
@@ -62,6 +67,35 @@ inline float fast_atan2(float y, float x) {
   static constexpr float kP[5] = {0.9999999812646111f, -0.3333278577192415f, 0.199740824154833f,
                                   -0.13848490211930034f, 0.07976291805297275f};
   return reduced_atan2(y, x, kP);
+}
+
+struct SinCos {
+  double sin, cos;
+};
+
+// sin and cos of |x| < 1e6 to within 2e-15 without libm calls (the renderer needs them per sample):
+// x = k pi/2 + r with |r| <= pi/4, Taylor polynomials in r, then the quadrant k mod 4.
+inline SinCos sin_cos(double x) {
+  static constexpr double kSin[7] = {
+      1, -1.0 / 6, 1.0 / 120, -1.0 / 5040, 1.0 / 362880, -1.0 / 39916800, 1.0 / 6227020800};
+  static constexpr double kCos[8] = {
+      1,           -0.5,           1.0 / 24,        -1.0 / 720,
+      1.0 / 40320, -1.0 / 3628800, 1.0 / 479001600, -1.0 / 87178291200};
+  constexpr double kRound = 0x1.8p52;  // adding and subtracting it rounds to the nearest integer
+  constexpr double kHalfPiHi = 1.5707963267948966, kHalfPiLo = 6.123233995736766e-17;
+  const double k = (x * (2 / kPi) + kRound) - kRound;
+  const double r = (x - k * kHalfPiHi) - k * kHalfPiLo, r2 = r * r;
+  const double s = r * polynomial(r2, kSin), c = polynomial(r2, kCos);
+  switch (static_cast<long long>(k) & 3) {
+    case 0:
+      return {s, c};
+    case 1:
+      return {c, -s};
+    case 2:
+      return {-s, -c};
+    default:
+      return {-c, s};
+  }
 }
 
 // Paper Eq. 1: x = L (phi - phi0) cos(theta1), y = L (theta - theta0).
