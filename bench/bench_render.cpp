@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   frames.rig = Pose(Eigen::Translation3d(0, 0, 1.7));
   frames.next_rig =
       Pose(Eigen::Translation3d(10.0 / 30, 0, 1.7)) * Pose(Eigen::AngleAxisd(0.01, Vec3::UnitZ()));
-  const RenderOptions options{spp, 4, 0};
+  const RenderOptions options{spp, argc > 5 ? std::atoi(argv[5]) : 4, 0};
   std::printf("bench_render: street fixture, %zu actors, %d threads, %d spp\n", scene.actors.size(),
               threads, spp);
 

@@ -166,8 +166,7 @@ SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const
   const double cos_n = to_sun.dot(s.normal);
   if (cos_n <= 0) return {};
   return {{origin, to_sun, true},
-          throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) *
-              (cos_n / kPi)};
+          throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) * (cos_n / kPi)};
 }
 
 // One bounce of a path at `hit`: adds what the path sees (sky, sun disc, emission), prepares the
@@ -192,7 +191,8 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
   const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
   const double cos_i = -dir.dot(s.normal);
   bool diffuse = m.kind == Material::Kind::Diffuse;
-  if (m.kind == Material::Kind::Glossy) diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
+  if (m.kind == Material::Kind::Glossy)
+    diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
   if (diffuse) {
     sun = sun_ray(lights, s, above, throughput, light_sample);
     throughput = throughput.cwiseProduct(s.albedo);
@@ -266,6 +266,7 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
       const std::uint64_t key =
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
       const std::vector<Vec2> shifts = pixel_shifts(key, 1 + 3 * (options.max_bounces + 1));
+      const PixelRays camera_rays(projection, x, y);
       Rgb sum = Rgb::Zero();
       for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
         const int count = std::min(kBundleSize, options.samples_per_pixel - first);
@@ -275,7 +276,7 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
           samplers[i] = Sampler(shifts, first + i);
           const Vec2 jitter = samplers[i].next();
           paths[i].origin = origin;
-          paths[i].dir = (rotation * projection.ray(Vec2(x, y) + jitter)).normalized();
+          paths[i].dir = (rotation * camera_rays(jitter)).normalized();
         }
         trace_bundle(embree, lights, paths, samplers, count, options.max_bounces, row_rays);
         for (int i = 0; i < count; ++i) sum += paths[i].radiance;

@@ -30,4 +30,33 @@ std::optional<Vec2> Projection::project(const Vec3& direction) const {
               height / 2.0 + focal * camera.y() / camera.z());
 }
 
+namespace {
+
+SinCos small_angle_sin_cos(double d) {  // |d| <= pi / 64: the series' remainders are below 1e-16
+  const double d2 = d * d;
+  return {d * (1 - d2 / 6 * (1 - d2 / 20)), 1 - d2 / 2 * (1 - d2 / 12 * (1 - d2 / 30))};
+}
+
+SinCos angle_sum(SinCos a, SinCos b) {
+  return {a.sin * b.cos + a.cos * b.sin, a.cos * b.cos - a.sin * b.sin};
+}
+
+}  // namespace
+
+PixelRays::PixelRays(const Projection& projection, int x, int y)
+    : projection_(projection), corner_(x, y) {
+  if (projection.kind != Projection::Kind::Equirectangular) return;
+  const Angles centre = angles_from_erp(corner_ + Vec2(0.5, 0.5), projection.width);
+  phi_ = sin_cos(centre.phi), theta_ = sin_cos(centre.theta);
+}
+
+Vec3 PixelRays::operator()(Vec2 offset) const {
+  if (projection_.kind != Projection::Kind::Equirectangular)
+    return projection_.ray(corner_ + offset);
+  const double radians_per_pixel = 2 * kPi / projection_.width;
+  const Vec2 d = (offset - Vec2(0.5, 0.5)) * radians_per_pixel;
+  return direction_from_sin_cos(angle_sum(phi_, small_angle_sin_cos(d.x())),
+                                angle_sum(theta_, small_angle_sin_cos(d.y())));
+}
+
 }  // namespace flowscape

@@ -10,8 +10,7 @@ Angles angles_from_erp(Vec2 p, int erp_width) {
 }
 
 Vec3 direction_from_angles(Angles a) {
-  const SinCos phi = sin_cos(a.phi), theta = sin_cos(a.theta);
-  return {theta.cos * phi.cos, -theta.cos * phi.sin, -theta.sin};
+  return direction_from_sin_cos(sin_cos(a.phi), sin_cos(a.theta));
 }
 
 Vec3 direction_from_erp(Vec2 p, int erp_width) {

@@ -25,4 +25,18 @@ struct Projection {
   std::optional<Vec2> project(const Vec3& direction) const;
 };
 
+// Rays through many points of one pixel (the samples of a path tracer). The ERP form takes the sin
+// and cos of the pixel centre's angles once and adds each offset (at most half a pixel) by the
+// angle-sum formulas with short series, exact to double precision.
+class PixelRays {
+ public:
+  PixelRays(const Projection& projection, int x, int y);
+  Vec3 operator()(Vec2 offset) const;  // offset in [0, 1)^2 from the pixel's corner; not normalised
+
+ private:
+  const Projection& projection_;
+  Vec2 corner_;
+  SinCos phi_, theta_;  // ERP: the pixel centre's angles
+};
+
 }  // namespace flowscape

@@ -111,6 +111,9 @@ inline Vec2 erp_from_angles(Angles a, int erp_width) {
 Angles angles_from_erp(Vec2 p, int erp_width);
 
 Vec3 direction_from_angles(Angles a);  // unit vector
+inline Vec3 direction_from_sin_cos(SinCos phi, SinCos theta) {
+  return {theta.cos * phi.cos, -theta.cos * phi.sin, -theta.sin};
+}
 // d need not be unit length
 inline Angles angles_from_direction(const Vec3& d) {
   return {fast_atan2(-d.y(), d.x()), fast_atan2(-d.z(), std::sqrt(d.x() * d.x() + d.y() * d.y()))};
