@@ -95,6 +95,8 @@ int main(int argc, char** argv) {
       "  %d x %d ERP direct: colour %.2f s + flow/semantics %.2f s = %.2f s per frame"
       "   (target < 2 s on 2 cores)\n",
       erp.height, erp.width, color_seconds, gt_seconds, color_seconds + gt_seconds);
+  std::printf("  at this speed 2 s per frame allows %d spp\n",
+              int(spp * (2 - gt_seconds) / color_seconds));
 
   if (F <= 0) return 0;  // face size 0: the direct ERP figures only
 

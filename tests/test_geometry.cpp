@@ -129,3 +129,20 @@ TEST_CASE("fast_atan2 agrees with std::atan2 to 1e-10 rad in every octant") {
   CHECK(fast_atan2(0.0, 0.0) == 0);
   CHECK(fast_atan2(-1.0, 0.0) == Approx(-kPi / 2));
 }
+
+TEST_CASE("sin_cos agrees with std::sin and std::cos in every quadrant and turn") {
+  const auto worst_error = [](double range) {
+    double worst = 0;
+    for (int i = 0; i < 40000; ++i) {
+      const double x = -range + 2 * range * (i + 0.29) / 40000;
+      const SinCos sc = sin_cos(x);
+      worst = std::max({worst, std::abs(sc.sin - std::sin(x)), std::abs(sc.cos - std::cos(x))});
+    }
+    return worst;
+  };
+  CHECK(worst_error(2 * kPi) < 4e-16);
+  CHECK(worst_error(40 * kPi) < 1e-14);
+  CHECK(sin_cos(0.0).sin == 0);
+  CHECK(sin_cos(0.0).cos == 1);
+  CHECK(sin_cos(kPi / 2).sin == Approx(1).epsilon(1e-15));
+}

@@ -335,3 +335,22 @@ TEST_CASE("an articulated part moves with its own pose on top of its actor's") {
   CHECK(plate_pixels > 200);
   CHECK(worst < 1e-3);
 }
+
+TEST_CASE("camera rays through points of a pixel match the projection's ray there") {
+  for (const Projection& projection :
+       {Projection::equirectangular(16), Projection::equirectangular(32),
+        Projection::equirectangular(512), Projection::pinhole(40, 30, 70),
+        Projection::cube_face(Face::Up, 16)}) {
+    double worst = 0;
+    for (int y : {0, 7, projection.height - 1})
+      for (int x : {0, 13, projection.width - 1}) {
+        const PixelRays rays(projection, x, y);
+        for (const Vec2 offset : {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(0.999, 0.01), Vec2(0.3, 0.8)}) {
+          const Vec3 expected = projection.ray(Vec2(x, y) + offset).normalized();
+          worst = std::max(worst, (rays(offset).normalized() - expected).norm());
+        }
+      }
+    INFO("worst " << worst << " at width " << projection.width);
+    CHECK(worst < 1e-14);
+  }
+}

@@ -142,7 +142,8 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(now_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar};
+  return {
+      true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar, {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}};
 }
 
 bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& direction,
@@ -165,10 +166,15 @@ void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
   std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
   std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
   rtcIntersect16(valid, now_, &context, &packet);
+  const RTCHit16& hit = packet.hit;
   for (int i = 0; i < count; ++i)
-    hits[i] = !valid[i] || packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+    hits[i] = !valid[i] || hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                   ? Hit{}
-                  : Hit{true, packet.hit.instID[0][i], packet.hit.primID[i], packet.ray.tfar[i]};
+                  : Hit{true,
+                        hit.instID[0][i],
+                        hit.primID[i],
+                        packet.ray.tfar[i],
+                        {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]}};
 }
 
 void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) const {

@@ -30,6 +30,7 @@ struct Hit {
   bool found = false;
   unsigned mesh = 0, triangle = 0;
   double distance = std::numeric_limits<double>::infinity();
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // (v1 - v0) x (v2 - v0) in the mesh's frame
 };
 
 class EmbreeScene {

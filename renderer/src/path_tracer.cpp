@@ -23,13 +23,11 @@ double unit(std::uint64_t bits) { return double(bits >> 11) * 0x1.0p-53; }
 
 // The Cranley-Patterson rotation of each pair of sample dimensions in one pixel: a hash of the
 // pixel, the seed and the pair.
-std::vector<Vec2> pixel_shifts(std::uint64_t pixel_key, int pairs) {
-  std::vector<Vec2> shifts(pairs);
-  for (int p = 0; p < pairs; ++p) {
+void pixel_shifts(std::uint64_t pixel_key, std::vector<Vec2>& shifts) {
+  for (std::size_t p = 0; p < shifts.size(); ++p) {
     const std::uint64_t h = mix_bits(pixel_key ^ mix_bits(std::uint64_t(p + 1)));
     shifts[p] = {unit(h), unit(mix_bits(h))};
   }
-  return shifts;
 }
 
 // Sample `index` of a pixel: the R2 sequence (Roberts 2018) for each pair of dimensions, shifted
@@ -124,12 +122,8 @@ struct Surface {
 
 Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin, const Vec3& dir) {
   const MeshRef& ref = embree.mesh(hit.mesh);
-  const Eigen::Vector3i& tri = ref.mesh->triangles[hit.triangle];
-  const Vec3 v0 = ref.mesh->vertices[tri[0]].cast<double>(),
-             v1 = ref.mesh->vertices[tri[1]].cast<double>(),
-             v2 = ref.mesh->vertices[tri[2]].cast<double>();
   const Pose& pose = embree.pose_now(hit.mesh);
-  Vec3 normal = (pose.linear() * (v1 - v0).cross(v2 - v0)).normalized();
+  Vec3 normal = (pose.linear() * hit.normal.cast<double>()).normalized();
   const bool front = normal.dot(dir) < 0;
   if (!front) normal = -normal;
   const Vec3 position = origin + hit.distance * dir;
@@ -139,7 +133,7 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
   Rgb albedo = m.albedo.cast<double>();
   // checker cells are centred on multiples of the size, so planes there are not split
   if (m.checker_size > 0) {
-    const Vec3 cell = ((pose.inverse() * position) / m.checker_size).array() + 0.5;
+    const Vec3 cell = ((pose.inverse() * position) * (1 / m.checker_size)).array() + 0.5;
     const long parity =
         long(std::floor(cell.x())) + long(std::floor(cell.y())) + long(std::floor(cell.z()));
     if (parity & 1) albedo = m.checker_albedo.cast<double>();
@@ -213,7 +207,7 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
     if (dir.dot(s.normal) <= 0) return false;
     origin = above, path.sun_visible = true;
   }
-  if (bounce >= 2) {  // Russian roulette
+  if (bounce >= 3) {  // Russian roulette
     const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
     if (choice.y() >= keep) return false;
     throughput /= keep;
@@ -262,10 +256,11 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
   const Lights lights(embree.scene().environment);
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;
+    std::vector<Vec2> shifts(1 + 3 * (options.max_bounces + 1));  // camera jitter, 3 per bounce
     for (int x = 0; x < W; ++x) {
       const std::uint64_t key =
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
-      const std::vector<Vec2> shifts = pixel_shifts(key, 1 + 3 * (options.max_bounces + 1));
+      pixel_shifts(key, shifts);
       const PixelRays camera_rays(projection, x, y);
       Rgb sum = Rgb::Zero();
       for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {

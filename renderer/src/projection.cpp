@@ -32,9 +32,12 @@ std::optional<Vec2> Projection::project(const Vec3& direction) const {
 
 namespace {
 
-SinCos small_angle_sin_cos(double d) {  // |d| <= pi / 64: the series' remainders are below 1e-16
+// |d| <= pi / 64 (half a pixel of an ERP at least 64 wide): the series' remainders are below 1e-17.
+SinCos small_angle_sin_cos(double d) {
+  static constexpr double kSin[5] = {1, -1.0 / 6, 1.0 / 120, -1.0 / 5040, 1.0 / 362880};
+  static constexpr double kCos[5] = {1, -0.5, 1.0 / 24, -1.0 / 720, 1.0 / 40320};
   const double d2 = d * d;
-  return {d * (1 - d2 / 6 * (1 - d2 / 20)), 1 - d2 / 2 * (1 - d2 / 12 * (1 - d2 / 30))};
+  return {d * polynomial(d2, kSin), polynomial(d2, kCos)};
 }
 
 SinCos angle_sum(SinCos a, SinCos b) {
@@ -44,15 +47,16 @@ SinCos angle_sum(SinCos a, SinCos b) {
 }  // namespace
 
 PixelRays::PixelRays(const Projection& projection, int x, int y)
-    : projection_(projection), corner_(x, y) {
-  if (projection.kind != Projection::Kind::Equirectangular) return;
+    : projection_(projection),
+      corner_(x, y),
+      incremental_(projection.kind == Projection::Kind::Equirectangular && projection.width >= 64) {
+  if (!incremental_) return;
   const Angles centre = angles_from_erp(corner_ + Vec2(0.5, 0.5), projection.width);
   phi_ = sin_cos(centre.phi), theta_ = sin_cos(centre.theta);
 }
 
 Vec3 PixelRays::operator()(Vec2 offset) const {
-  if (projection_.kind != Projection::Kind::Equirectangular)
-    return projection_.ray(corner_ + offset);
+  if (!incremental_) return projection_.ray(corner_ + offset);
   const double radians_per_pixel = 2 * kPi / projection_.width;
   const Vec2 d = (offset - Vec2(0.5, 0.5)) * radians_per_pixel;
   return direction_from_sin_cos(angle_sum(phi_, small_angle_sin_cos(d.x())),

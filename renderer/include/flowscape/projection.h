@@ -27,7 +27,7 @@ struct Projection {
 
 // Rays through many points of one pixel (the samples of a path tracer). The ERP form takes the sin
 // and cos of the pixel centre's angles once and adds each offset (at most half a pixel) by the
-// angle-sum formulas with short series, exact to double precision.
+// angle-sum formulas with short series, exact to double precision (for ERPs at least 64 wide).
 class PixelRays {
  public:
   PixelRays(const Projection& projection, int x, int y);
@@ -36,7 +36,8 @@ class PixelRays {
  private:
   const Projection& projection_;
   Vec2 corner_;
-  SinCos phi_, theta_;  // ERP: the pixel centre's angles
+  bool incremental_;    // ERP at least 64 pixels wide
+  SinCos phi_, theta_;  // the pixel centre's angles
 };
 
 }  // namespace flowscape
