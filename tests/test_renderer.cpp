@@ -345,7 +345,7 @@ TEST_CASE("camera rays through points of a pixel match the projection's ray ther
     for (int y : {0, 7, projection.height - 1})
       for (int x : {0, 13, projection.width - 1}) {
         const PixelRays rays(projection, x, y);
-        for (const Vec2 offset : {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(0.999, 0.01), Vec2(0.3, 0.8)}) {
+        for (const Vec2& offset : {Vec2(0, 0), Vec2(0.5, 0.5), Vec2(0.999, 0.01), Vec2(0.3, 0.8)}) {
           const Vec3 expected = projection.ray(Vec2(x, y) + offset).normalized();
           worst = std::max(worst, (rays(offset).normalized() - expected).norm());
         }

@@ -2,24 +2,6 @@
 
 namespace flowscape {
 
-void add_box(Mesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, SemanticClass cls,
-             bool inward) {
-  const int base = int(mesh.vertices.size());
-  for (int k = 0; k < 8; ++k)
-    mesh.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
-                               k & 4 ? hi.z() : lo.z());
-  // two triangles per side, counter-clockwise seen from outside
-  const int sides[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& s : sides)
-    for (const Eigen::Vector3i& t :
-         {Eigen::Vector3i(s[0], s[1], s[2]), Eigen::Vector3i(s[0], s[2], s[3])}) {
-      const Eigen::Vector3i tri = inward ? Eigen::Vector3i(t[0], t[2], t[1]) : t;
-      mesh.triangles.push_back(tri + Eigen::Vector3i::Constant(base));
-      mesh.classes.push_back(cls);
-    }
-}
-
 Scene box_room(float half) {
   Scene scene;
   Mesh& m = scene.world;

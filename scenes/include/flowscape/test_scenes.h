@@ -1,12 +1,9 @@
 #pragma once
 // Small built-in scenes with motion simple enough to derive ground truth by hand, for tests.
 #include "flowscape/scene.h"
+#include "flowscape/shapes.h"
 
 namespace flowscape {
-
-// Appends an axis-aligned box [lo, hi] to a mesh; `inward` turns its faces to the inside.
-void add_box(Mesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, SemanticClass cls,
-             bool inward = false);
 
 // A closed room around the origin, half-size `half` metres: floor Road, ceiling Other, walls
 // Building. A rig inside sees no sky.

@@ -1,0 +1,255 @@
+#include "flowscape/city.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "city_layout.h"
+#include "city_models.h"
+#include "city_world.h"
+#include "flowscape/model_io.h"
+#include "flowscape/shapes.h"
+#include "random.h"
+#include "traffic.h"
+
+namespace flowscape {
+namespace {
+
+constexpr int kStartPoints = 110, kMaxActors = 200;
+const char* const kKindNames[] = {"car", "truck", "bus", "bike", "pedestrian"};
+
+std::vector<StartPoint> start_points(const Layout& layout) {
+  constexpr double kEndMargin = 8;
+  double usable = 0;
+  for (const Lane& lane : layout.lanes)
+    usable += std::max(0.0, lane.path.length() - 2 * kEndMargin);
+  const double spacing = usable / kStartPoints;
+  std::vector<StartPoint> points;
+  double next = spacing / 2, passed = 0;
+  for (int l = 0; l < int(layout.lanes.size()); ++l) {
+    const double length = std::max(0.0, layout.lanes[l].path.length() - 2 * kEndMargin);
+    for (; next < passed + length && int(points.size()) < kStartPoints; next += spacing) {
+      const double s = kEndMargin + next - passed;
+      const PathPoint p = layout.lanes[l].path.at(s);
+      const double yaw = std::atan2(p.direction.y(), p.direction.x());
+      const Eigen::Vector3d at(p.position.x(), p.position.y(), layout.height(p.position));
+      points.push_back(
+          {l, s,
+           Pose(Eigen::Translation3d(at) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))});
+    }
+    passed += length;
+  }
+  return points;
+}
+
+ActorKind vehicle_kind(const Style& style, Random& random) {
+  const double u = random.uniform();
+  const double trucks = style.buildings == Style::Buildings::Warehouses ? 0.25 : 0.08;
+  if (u < trucks) return ActorKind::Truck;
+  if (u < trucks + 0.07) return ActorKind::Bus;
+  if (u < trucks + 0.07 + 0.12) return ActorKind::Bike;
+  return ActorKind::Car;
+}
+
+bool clear_of(const std::vector<VehicleStart>& placed, int lane, double s, double length) {
+  for (const VehicleStart& o : placed)
+    if (o.lane == lane && std::abs(o.s - s) < (o.length + length) / 2 + 4) return false;
+  return true;
+}
+
+// A lane drawn with probability proportional to its length.
+int random_lane(const Layout& layout, Random& random) {
+  double total = 0;
+  for (const Lane& lane : layout.lanes) total += lane.path.length();
+  double pick = random.uniform(0, total);
+  for (int l = 0; l < int(layout.lanes.size()); ++l)
+    if ((pick -= layout.lanes[l].path.length()) < 0) return l;
+  return int(layout.lanes.size()) - 1;
+}
+
+struct Spawned {
+  std::vector<VehicleStart> vehicles;  // the ego first
+  std::vector<ActorKind> vehicle_kinds;
+  std::vector<WalkerStart> walkers;
+};
+
+Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, const StartPoint& ego,
+              const CityConfig& config, Random& random) {
+  Spawned out;
+  const KindSize car = kind_size(ActorKind::Car);
+  out.vehicles.push_back({car.length, car.width, ego.lane, ego.s, layout.lanes[ego.lane].speed});
+  for (int n = 0; n < config.vehicles; ++n) {
+    const ActorKind kind = vehicle_kind(layout.style, random);
+    const KindSize size = kind_size(kind);
+    const double wish = kind == ActorKind::Bike ? random.uniform(5, 8) : random.uniform(8, 25);
+    bool placed = false;
+    for (int attempt = 0; attempt < 200 && !placed; ++attempt) {
+      const int lane = random_lane(layout, random);
+      const double length = layout.lanes[lane].path.length();
+      if (length < size.length + 4) continue;
+      const double s = random.uniform(size.length / 2 + 1, length - size.length / 2 - 1);
+      if (!clear_of(out.vehicles, lane, s, size.length)) continue;
+      out.vehicles.push_back({size.length, size.width, lane, s, wish});
+      out.vehicle_kinds.push_back(kind);
+      placed = true;
+    }
+    if (!placed)
+      throw std::invalid_argument("map " + map_name(config.map) + " has no room for " +
+                                  std::to_string(config.vehicles) + " vehicles");
+  }
+  for (int n = 0; n < config.pedestrians; ++n) {
+    bool placed = false;
+    for (int attempt = 0; attempt < 200 && !placed; ++attempt) {
+      const int loop = random.below(int(loops.size()));
+      const double length = loops[loop].path.length(), s = random.uniform(0, length);
+      const bool clear = std::none_of(out.walkers.begin(), out.walkers.end(), [&](auto& w) {
+        const double d = std::abs(w.s - s);
+        return w.loop == loop && std::min(d, length - d) < 1.5;
+      });
+      if (!clear) continue;
+      out.walkers.push_back({loop, s, random.uniform(1.0, 1.6)});
+      placed = true;
+    }
+    if (!placed)
+      throw std::invalid_argument("map " + map_name(config.map) + " has no room for " +
+                                  std::to_string(config.pedestrians) + " pedestrians");
+  }
+  return out;
+}
+
+std::map<ActorKind, Mesh> user_models(const CityConfig& config, Scene& scene) {
+  std::map<ActorKind, Mesh> models;
+  for (const auto& [name, path] : config.models) {
+    const ActorKind kind = kind_from_name(name);
+    Material material;
+    material.kind =
+        kind == ActorKind::Pedestrian ? Material::Kind::Diffuse : Material::Kind::Glossy;
+    material.albedo = {0.5f, 0.45f, 0.4f};
+    const SemanticClass cls =
+        kind == ActorKind::Pedestrian ? SemanticClass::Pedestrian : SemanticClass::Vehicles;
+    models[kind] = load_model(path, cls, kind_size(kind).length, add_material(scene, material));
+  }
+  return models;
+}
+
+}  // namespace
+
+std::string map_name(int map) { return style_of(map).name; }
+
+std::string kind_name(ActorKind kind) { return kKindNames[int(kind)]; }
+
+ActorKind kind_from_name(const std::string& name) {
+  for (int k = 0; k < int(std::size(kKindNames)); ++k)
+    if (name == kKindNames[k]) return ActorKind(k);
+  throw std::invalid_argument("unknown actor kind \"" + name +
+                              "\" (car, truck, bus, bike or pedestrian)");
+}
+
+void validate(const CityConfig& c) {
+  style_of(c.map);
+  if (c.vehicles < 0 || c.pedestrians < 0)
+    throw std::invalid_argument("vehicle and pedestrian counts must not be negative");
+  if (c.vehicles + c.pedestrians > kMaxActors)
+    throw std::invalid_argument("at most " + std::to_string(kMaxActors) +
+                                " vehicles and pedestrians per map, asked for " +
+                                std::to_string(c.vehicles + c.pedestrians));
+  if (c.ego_start < 0 || c.ego_start >= 100)
+    throw std::invalid_argument("ego start " + std::to_string(c.ego_start) + " is not in 0..99");
+  if (!(c.duration > 0 && c.duration <= 3600))
+    throw std::invalid_argument("duration must be in (0, 3600] seconds");
+  for (const auto& entry : c.models) kind_from_name(entry.first);
+}
+
+Pose City::rig(double t) const { return ego(t) * Pose(Eigen::Translation3d(0, 0, camera_height)); }
+
+City make_city(const CityConfig& config) {
+  validate(config);
+  auto layout = std::make_shared<const Layout>(make_layout(config.map, config.seed));
+  City city;
+  city.config = config;
+  city.solids = build_world(*layout, config.seed, city.scene);
+  city.start_points = start_points(*layout);
+  city.area_at = [layout](const Eigen::Vector2d& p) { return layout->area(p); };
+  city.ground_height = [layout](const Eigen::Vector2d& p) { return layout->height(p); };
+  Random random(config.seed * 0x9e3779b97f4a7c15ull + 17 + std::uint64_t(config.map));
+  const std::vector<SidewalkLoop> loops = sidewalk_loops(*layout);
+  const Spawned spawned =
+      spawn(*layout, loops, city.start_points.at(config.ego_start), config, random);
+  const std::vector<Track> vehicle_tracks =
+      simulate_vehicles(*layout, spawned.vehicles, config.duration, config.seed);
+  const std::vector<Track> walker_tracks =
+      simulate_walkers(*layout, loops, spawned.walkers, config.duration);
+  const auto ego = std::make_shared<const Track>(vehicle_tracks[0]);
+  city.ego = [ego](double t) { return ego->pose(t); };
+  const std::map<ActorKind, Mesh> models = user_models(config, city.scene);
+  const auto add = [&](ActorKind kind, const Track& track, int lane, double s, double speed) {
+    const auto instance = std::uint16_t(city.scene.actors.size() + 1);
+    const auto model = models.find(kind);
+    city.scene.actors.push_back(make_actor(kind, instance, std::make_shared<const Track>(track),
+                                           model == models.end() ? nullptr : &model->second, random,
+                                           city.scene));
+    city.actors.push_back({instance, kind, lane, s, speed});
+  };
+  for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
+    const VehicleStart& start = spawned.vehicles[v];
+    add(spawned.vehicle_kinds[v - 1], vehicle_tracks[v], start.lane, start.s, start.speed);
+  }
+  for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
+    const WalkerStart& start = spawned.walkers[w];
+    add(ActorKind::Pedestrian, walker_tracks[w], start.loop, start.s, start.speed);
+  }
+  return city;
+}
+
+nlohmann::json to_json(const City& city) {
+  const CityConfig& c = city.config;
+  nlohmann::json actors = nlohmann::json::array();
+  for (const ActorRecord& a : city.actors)
+    actors.push_back({{"instance", a.instance},
+                      {"kind", kind_name(a.kind)},
+                      {"lane", a.lane},
+                      {"s", a.s},
+                      {"speed", a.speed}});
+  const StartPoint& ego = city.start_points.at(c.ego_start);
+  return {{"map", c.map},
+          {"map_name", map_name(c.map)},
+          {"seed", c.seed},
+          {"vehicles", c.vehicles},
+          {"pedestrians", c.pedestrians},
+          {"ego_start", c.ego_start},
+          {"duration", c.duration},
+          {"models", c.models},
+          {"camera_height", city.camera_height},
+          {"ego", {{"lane", ego.lane}, {"s", ego.s}}},
+          {"start_points", city.start_points.size()},
+          {"actors", actors}};
+}
+
+CityConfig config_from_json(const nlohmann::json& record) {
+  CityConfig c;
+  try {
+    c.map = record.at("map").get<int>();
+    c.seed = record.at("seed").get<std::uint64_t>();
+    c.vehicles = record.at("vehicles").get<int>();
+    c.pedestrians = record.at("pedestrians").get<int>();
+    c.ego_start = record.value("ego_start", 0);
+    c.duration = record.value("duration", 4.0);
+    c.models = record.value("models", std::map<std::string, std::string>{});
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("scene record: ") + e.what());
+  }
+  validate(c);
+  return c;
+}
+
+City city_from_record(const nlohmann::json& record) {
+  City city = make_city(config_from_json(record));
+  if (record.contains("actors") && record["actors"] != to_json(city)["actors"])
+    throw std::invalid_argument(
+        "scene record: this generator spawns other actors than the record lists (made by "
+        "another version?)");
+  return city;
+}
+
+}  // namespace flowscape

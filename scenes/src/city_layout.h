@@ -1,0 +1,72 @@
+#pragma once
+// Internal: the plan of a city map, a grid of roads with lanes, junctions, sidewalks and blocks,
+// and the height of the ground under it.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "flowscape/city.h"
+#include "path.h"
+
+namespace flowscape {
+
+struct Style {
+  std::string name;
+  int nx, ny;                       // road lines across x and y
+  double spacing_min, spacing_max;  // between neighbouring road lines, metres
+  int lanes;                        // per direction
+  double shoulder, sidewalk;        // widths, metres
+  enum class Buildings { Towers, Houses, MidRise, Warehouses, Farms } buildings;
+  double height_min, height_max;  // of buildings
+  double fill;                    // share of a block's frontage with buildings
+  double trees;                   // trees per 100 m of sidewalk
+  double parks;                   // share of blocks that are parks
+  double hills;                   // amplitude of the terrain, metres
+  double speed;                   // vehicles' wish speed, m/s
+  bool roundabouts = false, highway = false, water = false, rails = false;
+};
+const Style& style_of(int map);
+
+constexpr double kLaneWidth = 3.5, kCrosswalk = 4.0, kCurb = 0.15;
+
+struct Lane {
+  int from, to;  // nodes
+  int index;     // 0 = next to the centre line
+  Path path;     // from the stop line of `from` to the stop line of `to`
+  double speed;  // wish speed of vehicles on it
+};
+
+struct Block {
+  Eigen::Vector2d lo, hi;           // between the road edges (outer blocks reach the map's margin)
+  bool inner;                       // roads on all four sides
+  std::array<bool, 4> road_beside;  // a road along its side at lo.x, hi.x, lo.y, hi.y
+};
+
+struct Layout {
+  Style style;
+  std::vector<double> xs, ys;  // road centre lines
+  std::vector<double> node_height;
+  std::vector<int> lanes_along_x, lanes_along_y;  // lanes per direction of road j (along x) / i
+  double margin = 45;
+  std::vector<Lane> lanes;
+  std::vector<Block> blocks;
+
+  int nx() const { return int(xs.size()); }
+  int ny() const { return int(ys.size()); }
+  int node(int i, int j) const { return j * nx() + i; }
+  Eigen::Vector2d node_position(int n) const { return {xs[n % nx()], ys[n / nx()]}; }
+  double median(int lanes) const { return lanes >= 3 ? 2.0 : 0.0; }
+  double half_width_x(int j) const;  // of the road along x at ys[j]
+  double half_width_y(int i) const;  // of the road along y at xs[i]
+  // Junction n reaches this far from its centre along x and along y (crossings included).
+  Eigen::Vector2d junction_reach(int n) const;
+  bool is_roundabout(int n) const;
+  double height(const Eigen::Vector2d& p) const;  // ground (road surface) height
+  Area area(const Eigen::Vector2d& p) const;
+  Eigen::Vector2d lo() const { return {xs.front() - margin, ys.front() - margin}; }
+  Eigen::Vector2d hi() const { return {xs.back() + margin, ys.back() + margin}; }
+};
+
+Layout make_layout(int map, std::uint64_t seed);
+
+}  // namespace flowscape

@@ -1,0 +1,21 @@
+#pragma once
+// Internal: the built-in actor models (cars, trucks, buses, bikes, pedestrians) with moving parts:
+// wheels that roll with the distance travelled and limbs that swing with the walking cycle.
+#include <memory>
+
+#include "flowscape/city.h"
+#include "random.h"
+#include "traffic.h"
+
+namespace flowscape {
+
+struct KindSize {
+  double length, width;
+};
+KindSize kind_size(ActorKind kind);
+
+// An actor following `track`; `user_model` (if not null) replaces the built-in body.
+Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const Track> track,
+                 const Mesh* user_model, Random& random, Scene& scene);
+
+}  // namespace flowscape

@@ -1,0 +1,455 @@
+#include "city_world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "flowscape/shapes.h"
+#include "random.h"
+
+namespace flowscape {
+namespace {
+
+using V2 = Eigen::Vector2d;
+using V3 = Eigen::Vector3d;
+using C = SemanticClass;
+using Footprint = std::array<V2, 4>;
+
+Material diffuse(float r, float g, float b, float checker = 0, float shade = 0.8f) {
+  Material m;
+  m.albedo = {r, g, b};
+  if (checker > 0) m.checker_size = checker, m.checker_albedo = m.albedo * shade;
+  return m;
+}
+
+Material shiny(Material::Kind kind, float r, float g, float b, float roughness) {
+  Material m;
+  m.kind = kind, m.albedo = {r, g, b}, m.roughness = roughness;
+  return m;
+}
+
+struct Palette {
+  std::uint16_t asphalt, white, yellow, pavement, curb, grass, dirt, concrete, water, window, roof,
+      bark, leaves, metal, sign, fence, rail, tank;
+  std::vector<std::uint16_t> facades;
+};
+
+Palette make_palette(Scene& scene, Random& random) {
+  Palette p;
+  const auto add = [&](const Material& m) { return add_material(scene, m); };
+  p.asphalt = add(diffuse(0.07f, 0.07f, 0.075f, 0.5f, 0.85f));
+  p.white = add(diffuse(0.75f, 0.75f, 0.72f));
+  p.yellow = add(diffuse(0.7f, 0.55f, 0.1f));
+  p.pavement = add(diffuse(0.42f, 0.41f, 0.39f, 1.0f, 0.85f));
+  p.curb = add(diffuse(0.55f, 0.55f, 0.53f));
+  p.grass = add(diffuse(0.1f, 0.25f, 0.06f, 2.0f, 0.75f));
+  p.dirt = add(diffuse(0.3f, 0.23f, 0.16f, 3.0f, 0.85f));
+  p.concrete = add(diffuse(0.5f, 0.49f, 0.46f, 2.0f, 0.9f));
+  p.water = add(shiny(Material::Kind::Glossy, 0.02f, 0.05f, 0.07f, 0.05f));
+  p.window = add(shiny(Material::Kind::Metal, 0.25f, 0.3f, 0.35f, 0.05f));
+  p.roof = add(diffuse(0.45f, 0.15f, 0.1f, 0.6f, 0.8f));
+  p.bark = add(diffuse(0.25f, 0.17f, 0.1f));
+  p.leaves = add(diffuse(0.08f, 0.22f, 0.05f, 0.7f, 0.7f));
+  p.metal = add(shiny(Material::Kind::Metal, 0.5f, 0.5f, 0.52f, 0.35f));
+  p.sign = add(diffuse(0.1f, 0.2f, 0.6f));
+  p.fence = add(diffuse(0.4f, 0.3f, 0.2f));
+  p.rail = add(shiny(Material::Kind::Metal, 0.45f, 0.4f, 0.35f, 0.4f));
+  p.tank = add(diffuse(0.75f, 0.75f, 0.72f));
+  for (int k = 0; k < 6; ++k) {
+    const float r = float(random.uniform(0.3, 0.75)), g = float(random.uniform(0.3, 0.7)),
+                b = float(random.uniform(0.25, 0.65));
+    p.facades.push_back(add(diffuse(r, g, b, float(random.uniform(0.5, 1.5)), 0.85f)));
+  }
+  return p;
+}
+
+class WorldBuilder {
+ public:
+  WorldBuilder(const Layout& layout, std::uint64_t seed, Scene& scene)
+      : layout_(layout),
+        random_(seed ^ 0x5deece66dull),
+        mesh_(scene.world),
+        palette_(make_palette(scene, random_)) {
+    flat_ = std::all_of(layout.node_height.begin(), layout.node_height.end(),
+                        [](double h) { return h == 0; });
+  }
+
+  std::vector<Footprint> build() {
+    terrain();
+    roads();
+    for (const Block& block : layout_.blocks) this->block(block);
+    return solids_;
+  }
+
+ private:
+  V3 at(const V2& p, double lift) const { return {p.x(), p.y(), layout_.height(p) + lift}; }
+
+  // A horizontal rectangle following the ground, split into cells of at most `cell` metres.
+  void patch(V2 lo, V2 hi, double lift, Paint paint, double cell = 6) {
+    if (flat_) cell = 1e9;
+    const int nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / cell)));
+    const int ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / cell)));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const auto corner = [&](int di, int dj) {
+          return V2(lo.x() + (hi.x() - lo.x()) * (i + di) / nx,
+                    lo.y() + (hi.y() - lo.y()) * (j + dj) / ny);
+        };
+        add_quad(mesh_, at(corner(0, 0), lift), at(corner(1, 0), lift), at(corner(1, 1), lift),
+                 at(corner(0, 1), lift), paint);
+      }
+  }
+
+  // A strip along a straight line from a to b, `width` wide, lying on the ground.
+  void strip(const V2& a, const V2& b, double width, double lift, Paint paint) {
+    const V2 along = b - a, side = V2(-along.y(), along.x()).normalized() * (width / 2);
+    const int n = flat_ ? 1 : std::max(1, int(std::ceil(along.norm() / 6)));
+    for (int k = 0; k < n; ++k) {
+      const V2 p = a + along * double(k) / n, q = a + along * double(k + 1) / n;
+      add_quad(mesh_, at(p - side, lift), at(q - side, lift), at(q + side, lift),
+               at(p + side, lift), paint);
+    }
+  }
+
+  // A vertical face along the ground from a to b, from lift0 to lift1 above it.
+  void wall(const V2& a, const V2& b, double lift0, double lift1, Paint paint) {
+    const int n = flat_ ? 1 : std::max(1, int(std::ceil((b - a).norm() / 6)));
+    for (int k = 0; k < n; ++k) {
+      const V2 p = a + (b - a) * double(k) / n, q = a + (b - a) * double(k + 1) / n;
+      add_quad(mesh_, at(p, lift0), at(q, lift0), at(q, lift1), at(p, lift1), paint);
+    }
+  }
+
+  void terrain() {
+    const V2 lo = layout_.lo(), hi = layout_.hi();
+    const double far = 1500;
+    const double z = -0.3;
+    // a wide plain around the map (four quads around the map's rectangle)
+    const V2 corners[4] = {V2(-far, -far), V2(far, -far), V2(far, far), V2(-far, far)};
+    const V2 inner[4] = {lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
+    const Paint ground{layout_.style.water ? C::Water : C::Terrain,
+                       layout_.style.water ? palette_.water : palette_.grass};
+    for (int k = 0; k < 4; ++k) {
+      const V2 &a = corners[k], &b = corners[(k + 1) % 4], &c = inner[(k + 1) % 4], &d = inner[k];
+      add_quad(mesh_, V3(a.x(), a.y(), z), V3(b.x(), b.y(), z), V3(c.x(), c.y(), z),
+               V3(d.x(), d.y(), z), ground);
+    }
+  }
+
+  void roads() {
+    const Paint road{C::Road, palette_.asphalt};
+    for (int j = 0; j < layout_.ny(); ++j)
+      patch(
+          V2(layout_.xs.front() - layout_.half_width_y(0), layout_.ys[j] - layout_.half_width_x(j)),
+          V2(layout_.xs.back() + layout_.half_width_y(layout_.nx() - 1),
+             layout_.ys[j] + layout_.half_width_x(j)),
+          0, road, 4);
+    for (int i = 0; i < layout_.nx(); ++i)
+      for (int j = 0; j + 1 < layout_.ny(); ++j)
+        patch(V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] + layout_.half_width_x(j)),
+              V2(layout_.xs[i] + layout_.half_width_y(i),
+                 layout_.ys[j + 1] - layout_.half_width_x(j + 1)),
+              0, road, 4);
+    for (const Lane& lane : layout_.lanes) markings(lane);
+    for (int n = 0; n < int(layout_.node_height.size()); ++n) junction(n);
+    for (int j = 0; j < layout_.ny(); ++j)
+      if (layout_.median(layout_.lanes_along_x[j]) > 0) barriers(j);
+  }
+
+  // A median barrier and guard rails along road j (a highway) between its junctions.
+  void barriers(int j) {
+    const Paint rail{C::GuardRail, palette_.metal};
+    const double half = layout_.half_width_x(j) - 0.4;
+    for (int i = 0; i + 1 < layout_.nx(); ++i) {
+      const double x0 = layout_.xs[i] + layout_.junction_reach(layout_.node(i, j)).x(),
+                   x1 = layout_.xs[i + 1] - layout_.junction_reach(layout_.node(i + 1, j)).x();
+      for (double y : {layout_.ys[j] - half, layout_.ys[j], layout_.ys[j] + half}) {
+        const V3 centre = at(V2((x0 + x1) / 2, y), 0.45);
+        add_oriented_box(mesh_, Pose(Eigen::Translation3d(centre)), V3((x1 - x0) / 2, 0.2, 0.45),
+                         rail);
+      }
+    }
+  }
+
+  void markings(const Lane& lane) {
+    const PathPoint a = lane.path.at(0), b = lane.path.at(lane.path.length());
+    const V2 left(-a.direction.y(), a.direction.x());
+    const Paint white{C::RoadLine, palette_.white}, yellow{C::RoadLine, palette_.yellow};
+    // the line on this lane's left: dashed white between lanes, solid yellow at the centre
+    const V2 shift = left * (kLaneWidth / 2);
+    if (lane.index == 0) {
+      strip(a.position + shift - left * 0.12, b.position + shift - left * 0.12, 0.12, 0.02, yellow);
+    } else {
+      const double length = lane.path.length();
+      for (double s = 1; s + 3 < length; s += 9)
+        strip(lane.path.at(s).position + shift, lane.path.at(s + 3).position + shift, 0.15, 0.02,
+              white);
+    }
+    // stop line across the lane at its end
+    strip(b.position - a.direction * 0.3 - left * (kLaneWidth / 2),
+          b.position - a.direction * 0.3 + left * (kLaneWidth / 2), 0.4, 0.02, white);
+  }
+
+  void junction(int n) {
+    const V2 centre = layout_.node_position(n), reach = layout_.junction_reach(n);
+    const double hx = layout_.half_width_y(n % layout_.nx()),
+                 hy = layout_.half_width_x(n / layout_.nx());
+    const Paint zebra{C::RoadLine, palette_.white};
+    // crossings on the four arms, stripes along the road
+    for (int side : {-1, 1}) {
+      for (double y = -hy + 0.5; y < hy - 0.4; y += 1.2)  // arms along x
+        strip(centre + V2(side * (hx + 0.5), y), centre + V2(side * (reach.x() - 0.5), y), 0.6,
+              0.02, zebra);
+      for (double x = -hx + 0.5; x < hx - 0.4; x += 1.2)  // arms along y
+        strip(centre + V2(x, side * (hy + 0.5)), centre + V2(x, side * (reach.y() - 0.5)), 0.6,
+              0.02, zebra);
+    }
+    if (layout_.is_roundabout(n)) {
+      const double z = layout_.height(centre);
+      add_cylinder(mesh_, Pose(Eigen::Translation3d(centre.x(), centre.y(), z - 0.2)), 2.4, 0.5,
+                   {C::Terrain, palette_.grass}, 16);
+      tree(centre, 0.5);
+    }
+    const int i = n % layout_.nx(), j = n / layout_.nx();
+    const bool lights =
+        !layout_.is_roundabout(n) && i > 0 && j > 0 && i + 1 < layout_.nx() && j + 1 < layout_.ny();
+    for (int corner = 0; corner < 4; ++corner) {
+      const V2 sign(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1);
+      const V2 spot = centre + V2(sign.x() * (hx + 0.3), sign.y() * (hy + 0.3));
+      if (lights)
+        traffic_light(spot, sign);
+      else if (random_.chance(0.5))
+        traffic_sign(spot);
+    }
+  }
+
+  Pose upright(const V2& p, double lift, double yaw = 0) const {
+    return Pose(Eigen::Translation3d(at(p, lift)) * Eigen::AngleAxisd(yaw, V3::UnitZ()));
+  }
+
+  void traffic_light(const V2& spot, const V2& sign) {
+    add_cylinder(mesh_, upright(spot, kCurb), 0.09, 4.2, {C::Pole, palette_.metal}, 8);
+    for (int k = 0; k < 2; ++k) {  // one head facing each road at this corner
+      const V2 face = k == 0 ? V2(sign.x(), 0) : V2(0, sign.y());
+      add_oriented_box(mesh_, upright(spot + 0.3 * face, kCurb + 3.7), V3(0.15, 0.15, 0.45),
+                       {C::TrafficLight, palette_.metal});
+    }
+  }
+
+  void traffic_sign(const V2& spot) {
+    add_cylinder(mesh_, upright(spot, kCurb), 0.05, 2.6, {C::Pole, palette_.metal}, 6);
+    add_oriented_box(mesh_, upright(spot, kCurb + 2.4, random_.uniform(0, 3.14)),
+                     V3(0.02, 0.35, 0.35), {C::TrafficSign, palette_.sign});
+  }
+
+  void street_light(const V2& spot, const V2& toward_road) {
+    add_cylinder(mesh_, upright(spot, kCurb), 0.08, 6.5, {C::Pole, palette_.metal}, 8);
+    const double yaw = std::atan2(toward_road.y(), toward_road.x());
+    add_oriented_box(mesh_, upright(spot + toward_road * 0.8, kCurb + 6.4, yaw),
+                     V3(0.9, 0.08, 0.06), {C::Pole, palette_.metal});
+  }
+
+  void tree(const V2& p, double lift) {
+    const double height = random_.uniform(2.0, 3.5), crown = random_.uniform(1.5, 2.8);
+    add_cylinder(mesh_, upright(p, lift), 0.18, height, {C::Vegetation, palette_.bark}, 6);
+    add_cylinder(mesh_, upright(p, lift + height - 0.3, random_.uniform(0, 1)), crown, crown * 1.6,
+                 {C::Vegetation, palette_.leaves}, 7);
+  }
+
+  bool free_of_solids(const V2& lo, const V2& hi) const {
+    for (const Footprint& f : solids_) {
+      V2 flo = f[0], fhi = f[0];
+      for (const V2& c : f) flo = flo.cwiseMin(c), fhi = fhi.cwiseMax(c);
+      if (lo.x() < fhi.x() && hi.x() > flo.x() && lo.y() < fhi.y() && hi.y() > flo.y())
+        return false;
+    }
+    return true;
+  }
+
+  void sidewalks(const Block& b) {
+    const double w = layout_.style.sidewalk;
+    const Paint walk{C::SideWalk, palette_.pavement}, curb{C::SideWalk, palette_.curb};
+    const V2 lo = b.lo, hi = b.hi;
+    const std::array<std::pair<V2, V2>, 4> bands = {
+        std::pair{lo, V2(lo.x() + w, hi.y())}, std::pair{V2(hi.x() - w, lo.y()), hi},
+        std::pair{lo, V2(hi.x(), lo.y() + w)}, std::pair{V2(lo.x(), hi.y() - w), hi}};
+    const std::array<std::pair<V2, V2>, 4> edges = {
+        // curb faces, seen from the road
+        std::pair{V2(lo.x(), hi.y()), lo}, std::pair{V2(hi.x(), lo.y()), hi},
+        std::pair{lo, V2(hi.x(), lo.y())}, std::pair{hi, V2(lo.x(), hi.y())}};
+    for (int k = 0; k < 4; ++k) {
+      if (!b.road_beside[k]) continue;
+      patch(bands[k].first, bands[k].second, kCurb, walk);
+      wall(edges[k].first, edges[k].second, 0, kCurb, curb);
+      const V2 from = edges[k].first, to = edges[k].second, along = (to - from).normalized();
+      const V2 inward(-along.y(), along.x());
+      for (double s = 12; s < (to - from).norm() - 12; s += 30)
+        street_light(from + along * s + inward * 0.25, -inward);
+    }
+  }
+
+  void building(const V2& lo, const V2& hi, double height, std::uint16_t facade, bool roof) {
+    const V2 corners[4] = {lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
+    double base = 1e9;
+    for (const V2& c : corners) base = std::min(base, layout_.height(c));
+    const V3 lo3(lo.x(), lo.y(), base - 0.5), hi3(hi.x(), hi.y(), base + kCurb + height);
+    Mesh box;
+    add_box(box, lo3.cast<float>(), hi3.cast<float>(), C::Building);
+    box.materials.assign(box.triangles.size(), facade);
+    append_mesh(mesh_, box);
+    solids_.push_back({corners[0], corners[1], corners[2], corners[3]});
+    windows(corners, base + kCurb, height);
+    if (roof) gable(lo3, hi3);
+  }
+
+  void windows(const V2 (&corners)[4], double base, double height) {
+    const Paint glass{C::Building, palette_.window};
+    for (int k = 0; k < 4; ++k) {
+      const V2 a = corners[k], b = corners[(k + 1) % 4], along = (b - a).normalized();
+      const V2 out(along.y(), -along.x());
+      const double length = (b - a).norm();
+      const int columns = int(length / 3.2);
+      for (double z = base + 1.2; z + 2.2 < base + height; z += 3.3)
+        for (int c = 0; c < columns; ++c) {
+          const V2 p = a + along * (length * (c + 0.5) / columns) + out * 0.03;
+          const V3 p0(p.x() - along.x() * 0.7, p.y() - along.y() * 0.7, z),
+              p1(p.x() + along.x() * 0.7, p.y() + along.y() * 0.7, z);
+          add_quad(mesh_, p0, p1, p1 + V3(0, 0, 1.8), p0 + V3(0, 0, 1.8), glass);
+        }
+    }
+  }
+
+  void gable(const V3& lo, const V3& hi) {
+    const Paint roof{C::Building, palette_.roof};
+    const double ridge = hi.z() + 0.4 * (hi.y() - lo.y()), my = (lo.y() + hi.y()) / 2;
+    const V3 a(lo.x(), lo.y(), hi.z()), b(hi.x(), lo.y(), hi.z()), c(hi.x(), hi.y(), hi.z()),
+        d(lo.x(), hi.y(), hi.z()), r0(lo.x(), my, ridge), r1(hi.x(), my, ridge);
+    add_quad(mesh_, a, b, r1, r0, roof);
+    add_quad(mesh_, c, d, r0, r1, roof);
+    add_quad(mesh_, b, c, r1, r1, roof);
+    add_quad(mesh_, d, a, r0, r0, roof);
+  }
+
+  void fence(const V2& a, const V2& b) {
+    const Paint paint{C::Fence, palette_.fence};
+    const V2 along = (b - a).normalized();
+    for (double s = 0; s <= (b - a).norm(); s += 2.5)
+      add_oriented_box(mesh_, upright(a + along * s, kCurb + 0.6), V3(0.05, 0.05, 0.6), paint);
+    const double yaw = std::atan2(along.y(), along.x());
+    add_oriented_box(mesh_, upright((a + b) / 2, kCurb + 1.0, yaw),
+                     V3((b - a).norm() / 2, 0.03, 0.06), paint);
+  }
+
+  void block(const Block& b) {
+    const Style& style = layout_.style;
+    sidewalks(b);
+    const double w = style.sidewalk;
+    const V2 lo = b.lo + V2(b.road_beside[0] ? w : 0, b.road_beside[2] ? w : 0);
+    const V2 hi = b.hi - V2(b.road_beside[1] ? w : 0, b.road_beside[3] ? w : 0);
+    if (hi.x() - lo.x() < 4 || hi.y() - lo.y() < 4) return;
+    const bool park = random_.chance(style.parks);
+    const bool green = park || style.buildings == Style::Buildings::Houses ||
+                       style.buildings == Style::Buildings::Farms;
+    if (style.water && !b.road_beside[2] && b.road_beside[3]) return waterfront(lo, hi);
+    patch(lo, hi, kCurb,
+          green ? Paint{C::Terrain, palette_.grass}
+                : Paint{C::Ground, style.buildings == Style::Buildings::Warehouses
+                                       ? palette_.dirt
+                                       : palette_.concrete});
+    if (!park)
+      lots(lo, hi, b);
+    else
+      fence(V2(lo.x() + 1, lo.y() + 1), V2(hi.x() - 1, lo.y() + 1));
+    if (style.rails && !b.road_beside[3]) rails(lo, hi);
+    const double spacing = 100 / std::max(0.1, style.trees + (park ? 6 : 0));
+    for (double x = lo.x() + 2; x < hi.x() - 2; x += spacing)
+      for (double y : {lo.y() + 1.5, hi.y() - 1.5})
+        if (free_of_solids(V2(x, y) - V2(2, 2), V2(x, y) + V2(2, 2))) tree(V2(x, y), kCurb);
+    if (park)
+      for (int k = 0; k < 6; ++k) {
+        const V2 p(random_.uniform(lo.x() + 4, hi.x() - 4),
+                   random_.uniform(lo.y() + 4, hi.y() - 4));
+        tree(p, kCurb);
+      }
+  }
+
+  // Buildings along the block's two sides that run along x, front at the block's edge.
+  void lots(const V2& lo, const V2& hi, const Block& b) {
+    const Style& style = layout_.style;
+    using Kind = Style::Buildings;
+    const bool houses = style.buildings == Kind::Houses || style.buildings == Kind::Farms;
+    const double setback = houses ? 5 : (style.buildings == Kind::Warehouses ? 3 : 0.5);
+    const double max_depth = std::min(houses ? 12.0 : 30.0, (hi.y() - lo.y()) / 2 - setback - 1);
+    if (max_depth < 5) return;
+    for (int side = 0; side < 2; ++side) {
+      if (!b.road_beside[2 + side] && b.inner) continue;
+      double x = lo.x() + 1;
+      while (x < hi.x() - 6) {
+        const double width =
+            std::min(hi.x() - 1 - x, random_.uniform(houses ? 9 : 12, houses ? 14 : 30));
+        if (width < 6) break;
+        const double depth = random_.uniform(std::min(8.0, max_depth), max_depth);
+        if (random_.chance(style.fill)) {
+          const double y0 = side == 0 ? lo.y() + setback : hi.y() - setback - depth;
+          const V2 blo(x, y0), bhi(x + width, y0 + depth);
+          building(blo, bhi, random_.uniform(style.height_min, style.height_max),
+                   palette_.facades[random_.below(int(palette_.facades.size()))], houses);
+          if (houses) {
+            const double front = side == 0 ? lo.y() + 1 : hi.y() - 1;
+            fence(V2(x, front), V2(x + width - 2.5, front));
+          }
+          if (style.buildings == Kind::Warehouses && random_.chance(0.4)) tank(blo, bhi, side);
+        }
+        x += width + random_.uniform(1, houses ? 8 : 4);
+      }
+    }
+  }
+
+  void tank(const V2& lo, const V2& hi, int side) {
+    const double y = side == 0 ? hi.y() + 4 : lo.y() - 4, x = (lo.x() + hi.x()) / 2;
+    if (!free_of_solids(V2(x - 3.5, y - 3.5), V2(x + 3.5, y + 3.5))) return;
+    add_cylinder(mesh_, upright(V2(x, y), kCurb - 0.3), 3, random_.uniform(4, 9),
+                 {C::Static, palette_.tank}, 16);
+    solids_.push_back({V2(x - 3, y - 3), V2(x + 3, y - 3), V2(x + 3, y + 3), V2(x - 3, y + 3)});
+  }
+
+  void rails(const V2& lo, const V2& hi) {
+    const double y = (lo.y() + hi.y()) / 2;
+    strip(V2(lo.x(), y), V2(hi.x(), y), 3.0, kCurb + 0.05, {C::RailTrack, palette_.dirt});
+    for (double offset : {-0.72, 0.72})
+      strip(V2(lo.x(), y + offset), V2(hi.x(), y + offset), 0.08, kCurb + 0.2,
+            {C::RailTrack, palette_.rail});
+  }
+
+  // A promenade along the road, a quay wall, water below and piers on posts.
+  void waterfront(const V2& lo, const V2& hi) {
+    const double quay = hi.y() - 8;
+    patch(V2(lo.x(), quay), hi, kCurb, {C::Ground, palette_.concrete});
+    patch(lo, V2(hi.x(), quay), -1.5, {C::Water, palette_.water}, 50);
+    wall(V2(hi.x(), quay), V2(lo.x(), quay), -1.5, kCurb, {C::Wall, palette_.concrete});
+    for (double x = lo.x() + 20; x < hi.x() - 10; x += 60) {
+      const V3 p = at(V2(x, quay - 15), kCurb);
+      add_oriented_box(mesh_, Pose(Eigen::Translation3d(p - V3(0, 0, 0.15))), V3(3, 15, 0.15),
+                       {C::Bridge, palette_.fence});
+      for (double dy : {-12.0, 0.0, 12.0})
+        for (double dx : {-2.5, 2.5})
+          add_cylinder(mesh_, Pose(Eigen::Translation3d(p + V3(dx, dy, -2.5))), 0.2, 2.3,
+                       {C::Bridge, palette_.bark}, 6);
+    }
+    for (double x = lo.x() + 5; x < hi.x() - 5; x += 14) tree(V2(x, hi.y() - 3), kCurb);
+  }
+
+  const Layout& layout_;
+  Random random_;
+  Mesh& mesh_;
+  Palette palette_;
+  bool flat_;
+  std::vector<Footprint> solids_;
+};
+
+}  // namespace
+
+std::vector<Footprint> build_world(const Layout& layout, std::uint64_t seed, Scene& scene) {
+  return WorldBuilder(layout, seed, scene).build();
+}
+
+}  // namespace flowscape
