@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end checks of stitch_erp and flowviz as a user runs them: the demo, resume, and bad input
+# End-to-end checks of stitch_erp, flowviz and city_preview as a user runs them: the demo, resume, and bad input
 # (non-zero exit, one clear line naming the file, no damaged output).
 set -u
 bin=$1
@@ -46,6 +46,14 @@ mv "$work/short.png" "$work/demo/cube/left/color/000001.png"
 check "stitch_erp: corrupt face names the file" fails_clearly "left/color/000001.png" "$bin/stitch_erp" "$work/demo/cube" -o "$work/erp3" --height 64
 check "stitch_erp: no output for the corrupt frame" test ! -e "$work/erp3/color/000001.png"
 check "stitch_erp: no partial files" bash -c "! find '$work/erp3' -name '.partial-*' | grep -q ."
+
+check "city_preview renders a contact sheet and exports glTF" "$bin/city_preview" --maps 0 3 --height 24 --spp 1 --vehicles 10 --pedestrians 5 -o "$work/sheet.png" --gltf "$work/maps"
+check "city_preview sheet exists" test -s "$work/sheet.png"
+check "city_preview glTF and scene record" test -s "$work/maps/rural.gltf" -a -s "$work/maps/rural.json"
+check "the scene record is JSON naming its map" python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['map_name'] == 'rural'" "$work/maps/rural.json"
+check "city_preview: map out of range" bash -c "! '$bin/city_preview' --maps 9 -o '$work/bad.png' 2>/dev/null"
+check "city_preview: too many actors" fails_clearly "at most 200 vehicles and pedestrians" "$bin/city_preview" --maps 0 --vehicles 150 --pedestrians 100 -o "$work/bad.png"
+check "city_preview: no sheet after an error" test ! -e "$work/bad.png"
 
 echo "$passes passed, $failures failed"
 exit $((failures != 0))
