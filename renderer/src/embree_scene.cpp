@@ -51,19 +51,19 @@ RTCRay make_ray(const Vec3& origin, const Vec3& direction, float tfar) {
   ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
   ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y());
   ray.dir_z = float(direction.z());
-  ray.tnear = 0, ray.tfar = tfar, ray.mask = ~0u;
+  ray.tnear = 0, ray.tfar = tfar, ray.mask = kSceneMask;
   return ray;
 }
 
 // Copies the rays of a bundle into an Embree packet (RTCRay16 or the ray part of RTCRayHit16).
-void fill_packet(const BundleRay* rays, int count, RTCRay16& packet, int* valid) {
+void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& packet, int* valid) {
   for (int i = 0; i < kBundleSize; ++i) {
     valid[i] = i < count && rays[i].active ? -1 : 0;
     if (!valid[i]) continue;
     const Vec3 &o = rays[i].origin, &d = rays[i].direction;
     packet.org_x[i] = float(o.x()), packet.org_y[i] = float(o.y()), packet.org_z[i] = float(o.z());
     packet.dir_x[i] = float(d.x()), packet.dir_y[i] = float(d.y()), packet.dir_z[i] = float(d.z());
-    packet.tnear[i] = 0, packet.tfar[i] = kInfinity, packet.mask[i] = ~0u;
+    packet.tnear[i] = 0, packet.tfar[i] = kInfinity, packet.mask[i] = mask;
     packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
   }
 }
@@ -84,7 +84,8 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
   meshes_.push_back({&scene.world});
   for (std::size_t a = 0; a < scene.actors.size(); ++a)
     for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p)
-      meshes_.push_back({&scene.actors[a].parts[p].mesh, int(a), int(p), scene.actors[a].instance});
+      meshes_.push_back({&scene.actors[a].parts[p].mesh, int(a), int(p), scene.actors[a].instance,
+                         scene.actors[a].color_only});
   for (const MeshRef& ref : meshes_) {
     require_valid_mesh(*ref.mesh, mesh_name(ref));
     require_valid_materials(*ref.mesh, scene.materials.size(), mesh_name(ref));
@@ -104,6 +105,7 @@ RTCScene EmbreeScene::instances() const {
   for (unsigned m = 0; m < bvhs_.size(); ++m) {
     RTCGeometry instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(instance, bvhs_[m]);
+    rtcSetGeometryMask(instance, meshes_[m].color_only ? kColorOnlyMask : kSceneMask);
     rtcAttachGeometryByID(top, instance, m);
     rtcReleaseGeometry(instance);
   }
@@ -162,7 +164,7 @@ void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
   rtcInitIntersectContext(&context);
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kBundleSize];
-  fill_packet(rays, count, packet.ray, valid);
+  fill_packet(rays, count, kSceneMask | kColorOnlyMask, packet.ray, valid);
   std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
   std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
   rtcIntersect16(valid, now_, &context, &packet);
@@ -182,7 +184,7 @@ void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) cons
   rtcInitIntersectContext(&context);
   alignas(64) RTCRay16 packet;
   alignas(64) int valid[kBundleSize];
-  fill_packet(rays, count, packet, valid);
+  fill_packet(rays, count, kSceneMask, packet, valid);
   rtcOccluded16(valid, now_, &context, &packet);
   for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }

@@ -17,7 +17,12 @@ struct MeshRef {
   const Mesh* mesh;
   int actor = -1, part = -1;
   std::uint16_t instance = 0;
+  bool color_only = false;
 };
+
+// Embree ray masks: ground-truth and shadow rays see the scene, colour rays also the colour-only
+// actors (rain streaks, puddles).
+constexpr unsigned kSceneMask = 1, kColorOnlyMask = 2;
 
 // A ray of a bundle traced together; lanes that are not active are skipped.
 struct BundleRay {
@@ -44,8 +49,8 @@ class EmbreeScene {
   Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
   // Whether anything lies within `distance` along the ray (infinity: anywhere).
   bool occluded(bool at_next, const Vec3& origin, const Vec3& direction, double distance) const;
-  // Up to kBundleSize rays as one Embree packet at `now` (unbounded): much faster than single rays
-  // when they start close together in similar directions (the samples of one pixel).
+  // Up to kBundleSize colour rays as one Embree packet at `now` (unbounded): much faster than
+  // single rays when they start close together in similar directions (the samples of one pixel).
   void intersect(const BundleRay* rays, int count, Hit* hits) const;
   void occluded(const BundleRay* rays, int count, bool* blocked) const;
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace flowscape {
 namespace {
@@ -65,6 +66,12 @@ Vec3 cosine_direction(const Vec3& n, Vec2 u) {
   return frame_around(n) * Vec3(r * phi.cos, r * phi.sin, std::sqrt(std::max(0.0, 1 - u.x())));
 }
 
+Vec3 uniform_direction(Vec2 u) {
+  const double z = 1 - 2 * u.x(), r = std::sqrt(std::max(0.0, 1 - z * z));
+  const SinCos phi = sin_cos(2 * kPi * u.y());
+  return {r * phi.cos, r * phi.sin, z};
+}
+
 Vec3 reflect(const Vec3& d, const Vec3& n) { return d - 2 * d.dot(n) * n; }
 
 double schlick(double cos_i, double f0) {
@@ -107,6 +114,29 @@ struct Lights {
     return sun_frame * Vec3(sin_t * phi.cos, sin_t * phi.sin, cos_t);
   }
 
+  bool foggy() const { return environment.fog.density > 0; }
+  // Optical depth of the fog along o + s d for s in [0, t] (t may be infinite).
+  double optical_depth(const Vec3& o, const Vec3& d, double t) const {
+    const Fog& fog = environment.fog;
+    const double k = 1 / fog.height, a = fog_extinction(o.z()), b = k * d.z();
+    if (std::abs(b) < 1e-12) return a * t;
+    if (std::isinf(t)) return b > 0 ? a / b : std::numeric_limits<double>::infinity();
+    return a * -std::expm1(-b * t) / b;
+  }
+  // Distance to a scattering event along o + s d for a uniform u in [0, 1); infinity for none.
+  double free_flight(const Vec3& o, const Vec3& d, double u) const {
+    const double k = 1 / environment.fog.height, a = fog_extinction(o.z()), b = k * d.z();
+    const double depth = -std::log1p(-u);  // exponentially distributed optical depth
+    if (std::abs(b) < 1e-12) return depth / a;
+    const double x = depth * b / a;
+    if (x >= 1) return std::numeric_limits<double>::infinity();  // leaves the fog upwards first
+    return -std::log1p(-x) / b;
+  }
+  double fog_extinction(double z) const {
+    const Fog& fog = environment.fog;
+    return fog.density * std::exp(std::min(50.0, -(z - fog.base) / fog.height));
+  }
+
   const Environment& environment;
   Mat3 sun_frame;
   double sun_cos_radius;
@@ -141,6 +171,8 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
   return {position, normal, front, &m, albedo};
 }
 
+constexpr double kFar = std::numeric_limits<double>::infinity();
+
 struct PathState {
   Vec3 origin, dir;
   Rgb radiance = Rgb::Zero(), throughput = Rgb::Ones();
@@ -159,16 +191,48 @@ SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const
   const Vec3 to_sun = lights.sun_sample(u);
   const double cos_n = to_sun.dot(s.normal);
   if (cos_n <= 0) return {};
-  return {{origin, to_sun, true},
-          throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) * (cos_n / kPi)};
+  const double fog = lights.foggy() ? std::exp(-lights.optical_depth(origin, to_sun, kFar)) : 1;
+  return {
+      {origin, to_sun, true},
+      throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) * (cos_n / kPi * fog)};
 }
 
-// One bounce of a path at `hit`: adds what the path sees (sky, sun disc, emission), prepares the
-// sun ray and scatters. Returns whether the path goes on.
+// A scattering event in the fog at `point`: the sun seen through the fog (isotropic phase
+// 1 / 4 pi), then a new direction uniform over the sphere.
+void scatter_in_fog(const Lights& lights, const Vec3& point, Vec2 light_sample, Vec2 lobe_sample,
+                    PathState& path, SunRay& sun) {
+  path.throughput = path.throughput.cwiseProduct(lights.environment.fog.albedo.cast<double>());
+  const Vec3 to_sun = lights.sun_sample(light_sample);
+  const double fog = std::exp(-lights.optical_depth(point, to_sun, kFar));
+  sun = {{point, to_sun, true},
+         path.throughput.cwiseProduct(lights.sun_irradiance) * (fog / (4 * kPi))};
+  path.origin = point, path.dir = uniform_direction(lobe_sample), path.sun_visible = false;
+}
+
+bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the path survives
+  if (bounce < 3) return true;
+  const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
+  if (u >= keep) return false;
+  throughput /= keep;
+  return true;
+}
+
+// One bounce of a path at `hit`: a scattering event in the fog before it, or what the path sees
+// (sky, sun disc, emission, a rain streak), the sun ray, and the scattered direction. Returns
+// whether the path goes on.
 bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, int bounce,
              Sampler& sampler, PathState& path, SunRay& sun) {
   Vec3 &origin = path.origin, &dir = path.dir;
   Rgb& throughput = path.throughput;
+  const Vec2 flight = sampler.next(), light_sample = sampler.next(), lobe_sample = sampler.next(),
+             choice = sampler.next();
+  if (lights.foggy()) {
+    const double distance = lights.free_flight(origin, dir, flight.x());
+    if (distance < hit.distance) {
+      scatter_in_fog(lights, origin + distance * dir, light_sample, lobe_sample, path, sun);
+      return russian_roulette(bounce, choice.y(), throughput);
+    }
+  }
   if (!hit.found) {
     path.radiance += throughput.cwiseProduct(
         lights.sky_radiance(dir) + (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
@@ -176,13 +240,17 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
   }
   const Surface s = surface_at(embree, hit, origin, dir);
   const Material& m = *s.material;
-  if (m.kind == Material::Kind::Emissive) {
+  const double offset = 1e-4 * (1 + s.position.norm());
+  if (m.kind == Material::Kind::Emissive ||
+      (m.kind == Material::Kind::Streak && choice.x() < m.opacity)) {
     path.radiance += throughput.cwiseProduct(m.emission.cast<double>());
     return false;
   }
-  const double offset = 1e-4 * (1 + s.position.norm());
+  if (m.kind == Material::Kind::Streak) {  // light passes the streak
+    origin = s.position + offset * dir;
+    return true;
+  }
   const Vec3 above = s.position + offset * s.normal, below = s.position - offset * s.normal;
-  const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
   const double cos_i = -dir.dot(s.normal);
   bool diffuse = m.kind == Material::Kind::Diffuse;
   if (m.kind == Material::Kind::Glossy)
@@ -207,12 +275,7 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
     if (dir.dot(s.normal) <= 0) return false;
     origin = above, path.sun_visible = true;
   }
-  if (bounce >= 3) {  // Russian roulette
-    const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
-    if (choice.y() >= keep) return false;
-    throughput /= keep;
-  }
-  return true;
+  return russian_roulette(bounce, choice.y(), throughput);
 }
 
 // Traces up to kBundleSize paths in lock step, one Embree packet per bounce and one for the sun
@@ -256,7 +319,7 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
   const Lights lights(embree.scene().environment);
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;
-    std::vector<Vec2> shifts(1 + 3 * (options.max_bounces + 1));  // camera jitter, 3 per bounce
+    std::vector<Vec2> shifts(1 + 4 * (options.max_bounces + 1));  // camera jitter, 4 per bounce
     for (int x = 0; x < W; ++x) {
       const std::uint64_t key =
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));

@@ -10,7 +10,7 @@
 #include "city_world.h"
 #include "flowscape/model_io.h"
 #include "flowscape/shapes.h"
-#include "random.h"
+#include "flowscape/random.h"
 #include "traffic.h"
 
 namespace flowscape {

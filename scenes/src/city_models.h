@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "flowscape/city.h"
-#include "random.h"
+#include "flowscape/random.h"
 #include "traffic.h"
 
 namespace flowscape {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "flowscape/shapes.h"
-#include "random.h"
+#include "flowscape/random.h"
 
 namespace flowscape {
 namespace {

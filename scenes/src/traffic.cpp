@@ -5,7 +5,7 @@
 #include <limits>
 #include <numeric>
 
-#include "random.h"
+#include "flowscape/random.h"
 
 namespace flowscape {
 namespace {

@@ -47,6 +47,7 @@ struct Material {
     Metal,     // tinted specular lobe
     Glass,     // smooth dielectric, index 1.5
     Emissive,  // a light: emits `emission`, reflects nothing
+    Streak,  // a rain streak: with probability `opacity` glows with `emission`, else lets light by
   };
   Kind kind = Kind::Diffuse;
   Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};
@@ -55,6 +56,7 @@ struct Material {
   Eigen::Vector3f checker_albedo{0.2f, 0.2f, 0.2f};
   float roughness = 0.1f;             // width of the Glossy / Metal lobe (0 = mirror)
   Eigen::Vector3f emission{0, 0, 0};  // linear radiance, W / (m^2 sr) per channel
+  float opacity = 1;                  // Streak only
 };
 
 struct Mesh {
@@ -64,13 +66,23 @@ struct Mesh {
   std::vector<std::uint16_t> materials;  // one per triangle, into Scene::materials; empty = all 0
 };
 
-// Light from outside the scene: a sun disc and a sky dome.
+// A participating medium whose extinction falls off with height: sigma(z) = density *
+// exp(-(z - base) / height). It scatters isotropically with `albedo`; it changes colour only.
+struct Fog {
+  double density = 0;  // extinction at z = base, 1/m; 0 = clear air
+  double height = 20;  // metres for the extinction to fall by e
+  double base = 0;
+  Eigen::Vector3f albedo{0.9f, 0.9f, 0.9f};
+};
+
+// Light from outside the scene (a sun disc and a sky dome) and the air in between.
 struct Environment {
   Eigen::Vector3d sun_direction = Eigen::Vector3d(0.4, 0.3, 0.87).normalized();  // towards the sun
   Eigen::Vector3f sun_irradiance{3.0f, 2.85f, 2.6f};  // on a plane facing the sun, linear RGB
   double sun_angular_radius = 0.00465;                // radians (the real sun)
   Eigen::Vector3f sky_zenith{0.25f, 0.4f, 0.8f}, sky_horizon{0.7f, 0.8f, 0.9f};  // radiance
   Eigen::Vector3f ground{0.15f, 0.14f, 0.12f};  // radiance of the dome below the horizon
+  Fog fog;
 };
 
 // A rigid piece of an actor (a car body, a wheel, a leg), posed relative to the actor.
@@ -83,6 +95,8 @@ struct Actor {
   std::uint16_t instance;  // > 0; 0 is the static world
   std::vector<Part> parts;
   PoseTrack pose;
+  // Seen by colour rays only (rain streaks, puddles): never in flow, ids, depth or validity.
+  bool color_only = false;
 };
 
 struct Scene {

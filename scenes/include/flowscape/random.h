@@ -1,5 +1,5 @@
 #pragma once
-// Internal: a small deterministic random source (splitmix64), the same numbers on every platform.
+// A small deterministic random source (splitmix64), the same numbers on every platform.
 #include <cstdint>
 
 namespace flowscape {

@@ -1,0 +1,267 @@
+#include "flowscape/weather.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "flowscape/random.h"
+#include "flowscape/shapes.h"
+
+namespace flowscape {
+namespace {
+
+using V3 = Eigen::Vector3d;
+using Rgb = Eigen::Vector3f;
+constexpr double kPi = 3.141592653589793;
+
+Weather make(const char* name, double elevation, double azimuth, double turbidity,
+             double cloudiness, double fog, double rain, double wetness, double puddles,
+             double wind) {
+  return {name, elevation, azimuth, turbidity, cloudiness, fog, 25, rain, wetness, puddles, wind};
+}
+
+const std::vector<Weather>& presets() {
+  static const std::vector<Weather> kPresets = {
+      make("sunny", 55, 35, 2.5, 0.1, 0, 0, 0, 0, 0),
+      make("cloud", 50, 35, 4, 0.9, 0, 0, 0, 0, 0),
+      make("fog", 40, 60, 4, 0.3, 0.03, 0, 0.1, 0, 0),
+      make("rain", 45, 35, 5, 0.85, 0.004, 0.8, 0.9, 0.4, 0.2),
+      make("wet", 55, 35, 2.5, 0.1, 0, 0, 0.7, 0.2, 0),
+      make("wet_cloudy", 50, 35, 4, 0.7, 0, 0, 0.8, 0.3, 0),
+      make("soft_rain", 50, 35, 4, 0.6, 0.002, 0.3, 0.6, 0.2, 0.1),
+      make("hard_rain", 45, 35, 6, 0.95, 0.006, 1, 1, 0.6, 0.5),
+      make("clear_sunset", 8, 200, 4, 0.15, 0, 0, 0, 0, 0),
+      make("foggy_rain", 40, 35, 5, 0.8, 0.02, 0.5, 0.8, 0.3, 0.1),
+  };
+  return kPresets;
+}
+
+void require_range(double value, double lo, double hi, const char* name) {
+  if (!(value >= lo && value <= hi))
+    throw std::invalid_argument(std::string("weather ") + name + " = " + std::to_string(value) +
+                                " is not in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                "]");
+}
+
+// Sky light through clouds: the clear sky's colours faded towards an overcast grey.
+void sky(const Weather& w, double sun_height, Environment& e) {
+  const float haze = float(std::clamp((w.turbidity - 2) / 8, 0.0, 1.0) * 0.7);
+  const Rgb hazy(0.75f, 0.78f, 0.8f);
+  const float light = float(0.3 + 0.7 * sun_height) * float(1 - 0.4 * w.precipitation);
+  Rgb zenith = (Rgb(0.25f, 0.4f, 0.8f) * (1 - haze) + hazy * haze) * light;
+  Rgb horizon = (Rgb(0.7f, 0.8f, 0.9f) * (1 - haze * 0.5f) + hazy * haze * 0.5f) * light;
+  const float c = float(w.cloudiness);
+  const Rgb overcast = Rgb::Constant(0.55f) * light;
+  e.sky_zenith = zenith * (1 - c) + overcast * c;
+  e.sky_horizon = horizon * (1 - c) + overcast * 1.1f * c;
+  e.ground = e.sky_horizon * 0.25f;
+}
+
+Mesh crossed_streaks(Random& random, int count, double half, double height, double wind) {
+  Mesh mesh;
+  const V3 fall = V3(0.6 * wind, 0, -1).normalized();
+  for (int copy = 0; copy < 2; ++copy)  // two stacked layers, so the falling field wraps seamlessly
+    for (int k = 0; k < count; ++k) {
+      const V3 top(random.uniform(-half, half), random.uniform(-half, half),
+                   (copy + random.uniform()) * height);
+      const V3 bottom = top + 0.7 * fall;
+      for (const V3& side : {V3(0.0075, 0, 0), V3(0, 0.0075, 0)})
+        add_quad(mesh, top - side, top + side, bottom + side, bottom - side,
+                 {SemanticClass::Other, 0});
+    }
+  return mesh;
+}
+
+// Rain streaks in a box around the rig's path, falling at 9 m/s.
+Actor rain_actor(const Weather& w, Random& random, const PoseTrack& rig, Scene& scene) {
+  constexpr double kHalf = 25, kHeight = 12, kSpeed = 9;
+  Mesh streaks = crossed_streaks(random, int(4000 * w.precipitation), kHalf, kHeight, w.wind);
+  Material streak;
+  streak.kind = Material::Kind::Streak;
+  streak.emission = (scene.environment.sky_horizon * 1.4f).cwiseMax(0.05f);
+  streak.opacity = float(0.3 + 0.4 * w.precipitation);
+  streaks.materials.assign(streaks.triangles.size(), add_material(scene, streak));
+  Actor actor{std::uint16_t(scene.actors.size() + 1), {}, [rig](double t) {
+                const V3 at = rig(t).translation();
+                const double fall = std::fmod(kSpeed * t, kHeight);
+                return Pose(Eigen::Translation3d(at.x(), at.y(), at.z() - 3 - fall));
+              }};
+  actor.parts.push_back({std::move(streaks), [](double) { return Pose::Identity(); }});
+  actor.color_only = true;
+  return actor;
+}
+
+double triangle_area(const Mesh& mesh, std::size_t t) {
+  const Eigen::Vector3f &a = mesh.vertices[mesh.triangles[t][0]],
+                        &b = mesh.vertices[mesh.triangles[t][1]],
+                        &c = mesh.vertices[mesh.triangles[t][2]];
+  return 0.5 * double((b - a).cross(c - a).norm());
+}
+
+// Standing water: flat discs a centimetre above randomly chosen spots of the road.
+Actor puddle_actor(const Weather& w, Random& random, Scene& scene) {
+  const Mesh& world = scene.world;
+  std::vector<std::size_t> roads;
+  std::vector<double> cumulative;
+  double area = 0;
+  for (std::size_t t = 0; t < world.triangles.size(); ++t)
+    if (world.classes[t] == SemanticClass::Road) {
+      area += triangle_area(world, t);
+      roads.push_back(t), cumulative.push_back(area);
+    }
+  Material water;
+  water.kind = Material::Kind::Glossy, water.albedo = {0.02f, 0.025f, 0.03f};
+  water.roughness = 0.01f;
+  const Paint paint{SemanticClass::Road, add_material(scene, water)};
+  Mesh discs;
+  const int count = roads.empty() ? 0 : std::min(3000, int(w.puddles * area / 60));
+  for (int k = 0; k < count; ++k) {
+    const std::size_t pick =
+        std::lower_bound(cumulative.begin(), cumulative.end(), random.uniform(0, area)) -
+        cumulative.begin();
+    const Eigen::Vector3i& tri = world.triangles[roads[std::min(pick, roads.size() - 1)]];
+    double u = random.uniform(), v = random.uniform();
+    if (u + v > 1) u = 1 - u, v = 1 - v;
+    const V3 a = world.vertices[tri[0]].cast<double>(), b = world.vertices[tri[1]].cast<double>(),
+             c = world.vertices[tri[2]].cast<double>();
+    const V3 centre = a + u * (b - a) + v * (c - a) + V3(0, 0, 0.008);
+    add_cylinder(discs, Pose(Eigen::Translation3d(centre)), random.uniform(0.5, 2.2), 0.002, paint,
+                 10);
+  }
+  Actor actor{std::uint16_t(scene.actors.size() + 1), {}, [](double) { return Pose::Identity(); }};
+  actor.parts.push_back({std::move(discs), [](double) { return Pose::Identity(); }});
+  actor.color_only = true;
+  return actor;
+}
+
+// Wet ground: darker and, above a little wetness, under a clear coat like a film of water.
+void wet_materials(const Weather& w, Scene& scene) {
+  std::vector<bool> ground(scene.materials.size(), false);
+  for (std::size_t t = 0; t < scene.world.triangles.size(); ++t) {
+    const SemanticClass c = scene.world.classes[t];
+    if (c == SemanticClass::Road || c == SemanticClass::RoadLine || c == SemanticClass::SideWalk ||
+        c == SemanticClass::Ground)
+      ground[scene.world.materials.empty() ? 0 : scene.world.materials[t]] = true;
+  }
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    if (!ground[m]) continue;
+    Material& material = scene.materials[m];
+    material.albedo *= float(1 - 0.45 * w.wetness);
+    material.checker_albedo *= float(1 - 0.45 * w.wetness);
+    if (w.wetness > 0.3 && material.kind == Material::Kind::Diffuse) {
+      material.kind = Material::Kind::Glossy;
+      material.roughness = float(0.02 + 0.15 * (1 - w.wetness));
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> weather_presets() {
+  std::vector<std::string> names;
+  for (const Weather& w : presets()) names.push_back(w.preset);
+  return names;
+}
+
+Weather weather_preset(const std::string& name) {
+  for (const Weather& w : presets())
+    if (w.preset == name) return w;
+  std::string known;
+  for (const Weather& w : presets()) known += (known.empty() ? "" : ", ") + w.preset;
+  throw std::invalid_argument("unknown weather preset \"" + name + "\" (" + known + ")");
+}
+
+Weather randomized(const Weather& p, std::uint64_t seed) {
+  Random random(seed * 0xd1342543de82ef95ull + 0x6a09e667f3bcc909ull);
+  Weather w = p;
+  w.sun_elevation = std::clamp(p.sun_elevation + random.uniform(-15, 15), 3.0, 85.0);
+  w.sun_azimuth = std::fmod(p.sun_azimuth + random.uniform(0, 360), 360.0);
+  w.turbidity = std::clamp(p.turbidity + random.uniform(-1, 1), 1.5, 10.0);
+  w.cloudiness = std::clamp(p.cloudiness + random.uniform(-0.1, 0.1), 0.0, 1.0);
+  w.fog_density = p.fog_density * random.uniform(0.7, 1.3);
+  w.fog_height = p.fog_height * random.uniform(0.8, 1.2);
+  w.precipitation = std::clamp(p.precipitation * random.uniform(0.8, 1.2), 0.0, 1.0);
+  w.wetness = std::clamp(p.wetness * random.uniform(0.85, 1.15), 0.0, 1.0);
+  w.puddles = std::clamp(p.puddles * random.uniform(0.7, 1.3), 0.0, 1.0);
+  w.wind = std::clamp(p.wind + random.uniform(-0.1, 0.1), 0.0, 1.0);
+  return w;
+}
+
+void validate(const Weather& w) {
+  require_range(w.sun_elevation, 0, 90, "sun_elevation");
+  require_range(w.sun_azimuth, -360, 720, "sun_azimuth");
+  require_range(w.turbidity, 1, 20, "turbidity");
+  require_range(w.cloudiness, 0, 1, "cloudiness");
+  require_range(w.fog_density, 0, 1, "fog_density");
+  require_range(w.fog_height, 0.1, 10000, "fog_height");
+  require_range(w.precipitation, 0, 1, "precipitation");
+  require_range(w.wetness, 0, 1, "wetness");
+  require_range(w.puddles, 0, 1, "puddles");
+  require_range(w.wind, 0, 1, "wind");
+}
+
+nlohmann::json to_json(const Weather& w) {
+  return {{"preset", w.preset},
+          {"sun_elevation", w.sun_elevation},
+          {"sun_azimuth", w.sun_azimuth},
+          {"turbidity", w.turbidity},
+          {"cloudiness", w.cloudiness},
+          {"fog_density", w.fog_density},
+          {"fog_height", w.fog_height},
+          {"precipitation", w.precipitation},
+          {"wetness", w.wetness},
+          {"puddles", w.puddles},
+          {"wind", w.wind}};
+}
+
+Weather weather_from_json(const nlohmann::json& j) {
+  Weather w;
+  try {
+    w.preset = j.at("preset").get<std::string>();
+    w = weather_preset(w.preset);
+    for (auto& [key, field] : std::map<std::string, double*>{{"sun_elevation", &w.sun_elevation},
+                                                             {"sun_azimuth", &w.sun_azimuth},
+                                                             {"turbidity", &w.turbidity},
+                                                             {"cloudiness", &w.cloudiness},
+                                                             {"fog_density", &w.fog_density},
+                                                             {"fog_height", &w.fog_height},
+                                                             {"precipitation", &w.precipitation},
+                                                             {"wetness", &w.wetness},
+                                                             {"puddles", &w.puddles},
+                                                             {"wind", &w.wind}})
+      if (j.contains(key)) *field = j.at(key).get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("weather: ") + e.what());
+  }
+  validate(w);
+  return w;
+}
+
+Environment weather_environment(const Weather& w) {
+  validate(w);
+  Environment e;
+  const double elevation = w.sun_elevation * kPi / 180, azimuth = w.sun_azimuth * kPi / 180;
+  e.sun_direction = V3(std::cos(elevation) * std::cos(azimuth),
+                       std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+  const double height = std::sin(elevation);
+  // lower sun: a longer way through the air, less and warmer light
+  const float air = float(std::pow(std::max(0.05, height), 0.35) * (1 - 0.04 * w.turbidity));
+  const Rgb warm(1.0f, float(0.8 + 0.2 * height), float(0.6 + 0.4 * height));
+  e.sun_irradiance = Rgb(3.0f, 2.85f, 2.6f).cwiseProduct(warm) * air *
+                     float((1 - 0.92 * w.cloudiness) * (1 - 0.6 * w.precipitation));
+  e.sun_angular_radius = 0.00465 + 0.25 * w.cloudiness * w.cloudiness;  // clouds spread the sun
+  sky(w, height, e);
+  e.fog.density = w.fog_density, e.fog.height = w.fog_height;
+  return e;
+}
+
+void apply_weather(const Weather& w, std::uint64_t seed, const PoseTrack& rig, Scene& scene) {
+  scene.environment = weather_environment(w);
+  Random random(seed ^ 0x3c6ef372fe94f82bull);
+  if (w.wetness > 0) wet_materials(w, scene);
+  if (w.puddles > 0) scene.actors.push_back(puddle_actor(w, random, scene));
+  if (w.precipitation > 0) scene.actors.push_back(rain_actor(w, random, rig, scene));
+}
+
+}  // namespace flowscape
