@@ -13,6 +13,7 @@
 #include "flowscape/model_io.h"
 #include "flowscape/renderer.h"
 #include "flowscape/semantic_viz.h"
+#include "flowscape/weather.h"
 
 using namespace flowscape;
 
@@ -24,6 +25,7 @@ struct Options {
   std::uint64_t seed = 0;
   double time = 1.0;
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
+  std::vector<std::string> weathers;  // when given: one row per weather, of the first map
 };
 
 void paste(Image<std::uint8_t>& sheet, const Image<std::uint8_t>& tile, int x0, int y0) {
@@ -31,13 +33,18 @@ void paste(Image<std::uint8_t>& sheet, const Image<std::uint8_t>& tile, int x0, 
     std::copy(tile.pixel(0, y), tile.pixel(0, y) + 3 * tile.width, sheet.pixel(x0, y0 + y));
 }
 
-// One row of the sheet: colour | flow | semantics of map `map` at the options' time.
-void render_row(const Options& o, int map, Image<std::uint8_t>& sheet, int row) {
+// One row of the sheet: colour | flow | semantics of map `map` at the options' time, in a weather
+// preset (empty: the default sunny sky).
+void render_row(const Options& o, int map, const std::string& weather, Image<std::uint8_t>& sheet,
+                int row) {
   CityConfig config;
   config.map = map, config.seed = o.seed, config.vehicles = o.vehicles;
   config.pedestrians = o.pedestrians, config.duration = o.time + 0.1;
   config.ego_start = o.ego_start;
-  const City city = make_city(config);
+  City city = make_city(config);
+  if (!weather.empty())
+    apply_weather(
+        weather_preset(weather), o.seed, [&city](double t) { return city.rig(t); }, city.scene);
   Renderer renderer(city.scene);
   const FramePair frames{o.time, o.time + 1.0 / 30, city.rig(o.time), city.rig(o.time + 1.0 / 30)};
   const Projection erp = Projection::equirectangular(o.height);
@@ -48,8 +55,9 @@ void render_row(const Options& o, int map, Image<std::uint8_t>& sheet, int row) 
   paste(sheet, flow_to_color(gt.flow.view(), gt.valid.view(), {}), W, y0);
   paste(sheet, semantic_to_color(gt.semantic.view()), 2 * W, y0);
   cv::Mat canvas(sheet.height, sheet.width, CV_8UC3, sheet.data.data());
-  cv::putText(canvas, std::to_string(map) + " " + map_name(map), cv::Point(6, y0 + 18),
-              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather,
+              cv::Point(6, y0 + 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);
@@ -76,18 +84,25 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 99));
   app.add_option("--time", o.time, "seconds into the sequence")->check(CLI::Range(0.0, 600.0));
   app.add_option("--maps", o.maps, "map numbers (0-7)")->check(CLI::Range(0, kMapCount - 1));
+  app.add_option("--weathers", o.weathers,
+                 "one row per weather preset (sunny cloud fog rain wet wet_cloudy soft_rain "
+                 "hard_rain clear_sunset foggy_rain) of the first map");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
   CLI11_PARSE(app, argc, argv);
   try {
-    Image<std::uint8_t> sheet(3 * 2 * o.height, int(o.maps.size()) * o.height, 3);
-    for (std::size_t row = 0; row < o.maps.size(); ++row) {
+    for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
+    const std::size_t rows = o.weathers.empty() ? o.maps.size() : o.weathers.size();
+    Image<std::uint8_t> sheet(3 * 2 * o.height, int(rows) * o.height, 3);
+    for (std::size_t row = 0; row < rows; ++row) {
       const auto start = std::chrono::steady_clock::now();
-      render_row(o, o.maps[row], sheet, int(row));
+      const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
+      const std::string weather = o.weathers.empty() ? "" : o.weathers[row];
+      render_row(o, map, weather, sheet, int(row));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("map %zu/%zu (%s) in %.1f s\n", row + 1, o.maps.size(),
-                  map_name(o.maps[row]).c_str(), seconds);
+      std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows, map_name(map).c_str(),
+                  weather.c_str(), seconds);
       std::fflush(stdout);
     }
     write_image(o.out, sheet);

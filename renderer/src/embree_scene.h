@@ -26,7 +26,7 @@ constexpr unsigned kSceneMask = 1, kColorOnlyMask = 2;
 
 // A ray of a bundle traced together; lanes that are not active are skipped.
 struct BundleRay {
-  Vec3 origin, direction;  // unit direction
+  Vec3 origin = Vec3::Zero(), direction = Vec3::UnitX();  // unit direction
   bool active = false;
 };
 constexpr int kBundleSize = 16;  // Embree's widest packet

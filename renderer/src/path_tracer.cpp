@@ -96,7 +96,8 @@ struct Lights {
         sun_frame(frame_around(e.sun_direction)),
         sun_cos_radius(std::cos(e.sun_angular_radius)),
         sun_irradiance(e.sun_irradiance.cast<double>()),
-        sun_disc_radiance(sun_irradiance / (2 * kPi * (1 - sun_cos_radius))) {}
+        sun_disc_radiance(sun_irradiance * e.sun_disc_visibility /
+                          (2 * kPi * (1 - sun_cos_radius))) {}
 
   Rgb sky_radiance(const Vec3& d) const {
     if (d.z() < 0) return environment.ground.cast<double>();
@@ -176,13 +177,16 @@ constexpr double kFar = std::numeric_limits<double>::infinity();
 struct PathState {
   Vec3 origin, dir;
   Rgb radiance = Rgb::Zero(), throughput = Rgb::Ones();
-  bool sun_visible = true;  // camera rays and specular bounces may see the sun disc itself
+  // Camera rays and specular chains from the camera may see the sun disc itself; after a diffuse
+  // or fog event the sun comes through next-event estimation only (no sun caustics: they would be
+  // rare, huge fireflies at these sample counts).
+  bool sun_visible = true;
 };
 
 // Next-event estimation: a shadow ray towards the sun and the light it brings if unblocked.
 struct SunRay {
   BundleRay ray;
-  Rgb light;
+  Rgb light = Rgb::Zero();
 };
 
 // Direct light from the sun on a diffuse surface (the sun is too small to hit by chance).
@@ -267,13 +271,12 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
       const double cos_t = std::sqrt(1 - eta * eta * (1 - cos_i * cos_i));
       origin = below, dir = (eta * dir + (eta * cos_i - cos_t) * s.normal).normalized();
     }
-    path.sun_visible = true;
   } else {  // Metal, or the clear coat of Glossy: a mirror blurred by the roughness
     if (m.kind == Material::Kind::Metal) throughput = throughput.cwiseProduct(s.albedo);
     dir = (reflect(dir, s.normal) + m.roughness * cosine_direction(s.normal, lobe_sample))
               .normalized();
     if (dir.dot(s.normal) <= 0) return false;
-    origin = above, path.sun_visible = true;
+    origin = above;
   }
   return russian_roulette(bounce, choice.y(), throughput);
 }

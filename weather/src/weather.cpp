@@ -25,7 +25,7 @@ const std::vector<Weather>& presets() {
   static const std::vector<Weather> kPresets = {
       make("sunny", 55, 35, 2.5, 0.1, 0, 0, 0, 0, 0),
       make("cloud", 50, 35, 4, 0.9, 0, 0, 0, 0, 0),
-      make("fog", 40, 60, 4, 0.3, 0.03, 0, 0.1, 0, 0),
+      make("fog", 40, 60, 4, 0.6, 0.03, 0, 0.1, 0, 0),
       make("rain", 45, 35, 5, 0.85, 0.004, 0.8, 0.9, 0.4, 0.2),
       make("wet", 55, 35, 2.5, 0.1, 0, 0, 0.7, 0.2, 0),
       make("wet_cloudy", 50, 35, 4, 0.7, 0, 0, 0.8, 0.3, 0),
@@ -251,6 +251,7 @@ Environment weather_environment(const Weather& w) {
   e.sun_irradiance = Rgb(3.0f, 2.85f, 2.6f).cwiseProduct(warm) * air *
                      float((1 - 0.92 * w.cloudiness) * (1 - 0.6 * w.precipitation));
   e.sun_angular_radius = 0.00465 + 0.25 * w.cloudiness * w.cloudiness;  // clouds spread the sun
+  e.sun_disc_visibility = float(std::pow(1 - w.cloudiness, 3));          // and hide its disc
   sky(w, height, e);
   e.fog.density = w.fog_density, e.fog.height = w.fog_height;
   return e;

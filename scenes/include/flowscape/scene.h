@@ -80,6 +80,7 @@ struct Environment {
   Eigen::Vector3d sun_direction = Eigen::Vector3d(0.4, 0.3, 0.87).normalized();  // towards the sun
   Eigen::Vector3f sun_irradiance{3.0f, 2.85f, 2.6f};  // on a plane facing the sun, linear RGB
   double sun_angular_radius = 0.00465;                // radians (the real sun)
+  float sun_disc_visibility = 1;  // share of the disc's radiance seen directly (clouds hide it)
   Eigen::Vector3f sky_zenith{0.25f, 0.4f, 0.8f}, sky_horizon{0.7f, 0.8f, 0.9f};  // radiance
   Eigen::Vector3f ground{0.15f, 0.14f, 0.12f};  // radiance of the dome below the horizon
   Fog fog;
