@@ -54,6 +54,8 @@ check "the scene record is JSON naming its map" python3 -c "import json,sys; ass
 check "city_preview: map out of range" bash -c "! '$bin/city_preview' --maps 9 -o '$work/bad.png' 2>/dev/null"
 check "city_preview: too many actors" fails_clearly "at most 200 vehicles and pedestrians" "$bin/city_preview" --maps 0 --vehicles 150 --pedestrians 100 -o "$work/bad.png"
 check "city_preview: no sheet after an error" test ! -e "$work/bad.png"
+check "city_preview renders weathers" "$bin/city_preview" --maps 1 --weathers sunny rain --height 24 --spp 1 --vehicles 5 --pedestrians 5 -o "$work/weathers.png"
+check "city_preview: unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/city_preview" --weathers snow -o "$work/bad.png"
 
 echo "$passes passed, $failures failed"
 exit $((failures != 0))
