@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <fstream>
 #include <mutex>
 #include <system_error>
 
@@ -136,6 +137,8 @@ void write_image(const std::filesystem::path& path, ImageView<const T> image,
       throw FileError(path, "no image writer for this extension: " + first_line(OIIO::geterror()));
     OIIO::ImageSpec spec(image.width, image.height, image.channels, type_of<T>());
     if (!channel_names.empty()) spec.channelnames = channel_names;
+    // OpenEXR output stamps the write time otherwise; a release must be the same bytes every run
+    spec.attribute("DateTime", "");
     if (!out->open(temporary.string(), spec) || !out->write_image(type_of<T>(), image.data) ||
         !out->close())
       throw FileError(path, "cannot write image: " + first_line(out->geterror()));
@@ -151,5 +154,13 @@ template void write_image(const std::filesystem::path&, ImageView<const std::uin
                           const std::vector<std::string>&);
 template void write_image(const std::filesystem::path&, ImageView<const float>,
                           const std::vector<std::string>&);
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](const std::filesystem::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out.flush()) throw FileError(path, "cannot write");
+  });
+}
 
 }  // namespace flowscape

@@ -26,6 +26,11 @@ void Progress::advance(std::size_t count) {
   }
 }
 
+void Progress::skip(std::size_t count) {
+  std::lock_guard lock(mutex_);
+  done_ += count, skipped_ += count;
+}
+
 void Progress::finish() {
   std::lock_guard lock(mutex_);
   print(true);
@@ -34,11 +39,13 @@ void Progress::finish() {
 void Progress::print(bool final) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rate = seconds > 0 ? done_ / seconds : 0;
+  const double rate = seconds > 0 ? (done_ - skipped_) / seconds : 0;
   const double eta = rate > 0 ? (total_ - done_) / rate : 0;
-  std::fprintf(diagnostics(), "%s%s %zu/%zu %s (%.2f/s, %s %.0fs)%s", terminal_ ? "\r" : "",
-               label_.c_str(), done_, total_, unit_.c_str(), rate, final ? "took" : "ETA",
-               final ? seconds : eta, terminal_ && !final ? "" : "\n");
+  const bool slow = rate < 1;  // a few items a minute read better per minute
+  std::fprintf(diagnostics(), "%s%s %zu/%zu %s (%.2f/%s, %s %.0fs)%s", terminal_ ? "\r" : "",
+               label_.c_str(), done_, total_, unit_.c_str(), slow ? rate * 60 : rate,
+               slow ? "min" : "s", final ? "took" : "ETA", final ? seconds : eta,
+               terminal_ && !final ? "" : "\n");
   std::fflush(diagnostics());
 }
 

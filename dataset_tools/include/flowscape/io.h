@@ -28,6 +28,9 @@ std::FILE* diagnostics();
 // crash never leaves a half-written `path`. The temporary is removed when `write` throws.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write);
+// A text file (JSON, Markdown, lists), written atomically.
+void write_text(const std::filesystem::path& path, const std::string& text);
+
 // The temporary name write_atomically uses for `path` (hidden, same folder, same extension).
 std::filesystem::path temporary_path(const std::filesystem::path& path);
 

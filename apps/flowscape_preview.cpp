@@ -1,0 +1,75 @@
+// flowscape_preview: per sequence of a release, a contact sheet (first, middle and last flow frame:
+// colour | flow | semantics) and an MP4 of colour and flow side by side.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "flowscape/contact_sheet.h"
+#include "flowscape/io.h"
+#include "flowscape/progress.h"
+#include "flowscape/release.h"
+#include "flowscape/split.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+namespace {
+
+void write_video(const fs::path& path, const fs::path& sequence, int frames, int width) {
+  write_atomically(path, [&](const fs::path& temporary) {
+    cv::VideoWriter video;
+    for (int f = 0; f + 1 < frames; ++f) {
+      const auto row = frame_preview_row(sequence, f, width);
+      const Image<std::uint8_t> tile = contact_sheet({{row[0], row[1]}});
+      const cv::Mat rgb(tile.height, tile.width, CV_8UC3,
+                        const_cast<std::uint8_t*>(tile.data.data()));
+      if (!video.isOpened() &&
+          !video.open(temporary.string(), cv::VideoWriter::fourcc('m', 'p', '4', 'v'), 30,
+                      cv::Size(tile.width, tile.height)))
+        throw FileError(path, "OpenCV cannot open an MP4 writer");
+      cv::Mat bgr;
+      cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+      video.write(bgr);
+    }
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Contact sheets and MP4 previews of the sequences of a FlowScape release."};
+  std::string release, out;
+  std::vector<std::string> only;
+  int width = 512;
+  bool no_video = false;
+  app.add_option("release", release, "release folder")->required();
+  app.add_option("--sequences", only, "only these sequences (e.g. map00_seq05)");
+  app.add_option("-o,--out", out, "output folder (default: <release>/previews)");
+  app.add_option("--width", width, "width of each tile")->check(CLI::Range(16, 4096));
+  app.add_flag("--no-video", no_video, "contact sheets only");
+  CLI11_PARSE(app, argc, argv);
+  if (out.empty()) out = (fs::path(release) / "previews").string();
+  try {
+    std::vector<SequenceInfo> sequences;
+    for (const SequenceInfo& s : read_release_sequences(release))
+      if (only.empty() || std::find(only.begin(), only.end(), s.name) != only.end())
+        sequences.push_back(s);
+    if (sequences.empty()) throw FileError(release, "no such sequences");
+    Progress progress("flowscape_preview", sequences.size(), "sequences");
+    for (const SequenceInfo& s : sequences) {
+      const fs::path dir = fs::path(release) / "sequences" / s.name;
+      std::vector<std::vector<Image<std::uint8_t>>> rows;
+      for (int f : {0, (s.frames - 1) / 2, s.frames - 2})
+        rows.push_back(frame_preview_row(dir, f, width));
+      write_image(fs::path(out) / (s.name + ".png"), contact_sheet(rows));
+      if (!no_video) write_video(fs::path(out) / (s.name + ".mp4"), dir, s.frames, width);
+      progress.advance();
+    }
+    progress.finish();
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(diagnostics(), "flowscape_preview: error: %s\n", e.what());
+    return 1;
+  }
+}
