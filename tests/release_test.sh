@@ -113,6 +113,25 @@ check "typo in config" fails_clearly 'typo.json: release config: unknown key "fr
 check "no output after bad input" test ! -e "$work/x"
 check "split of a folder that is no release" fails_clearly "not a FlowScape release" "$bin/flowscape_split" "$work/x"
 
+check "gt_quality on the release, with JSON and CSV" "$bin/gt_quality" "$work/a" -q --json "$work/q.json" --csv "$work/q.csv" --error-images "$work/errors"
+check "gt_quality rows" python3 - "$work/q.json" "$work/q.csv" <<'PY'
+import json, sys
+report = json.load(open(sys.argv[1]))
+assert report["layout"] == "flowscape"
+rows = {r["name"]: r for r in report["rows"]}
+assert rows["all"]["pairs"] == 48 and "wpe_noc" in rows["all"]
+assert {"weather=sunny", "weather=cloud", "weather=fog", "weather=rain"} <= set(rows)
+assert sum(1 for n in rows if n.startswith("sequence=")) == 16
+assert rows["all"]["quality"] in ("high", "medium/low")
+assert open(sys.argv[2]).readline().startswith("name,pairs,pe,wpe,diff_percent")
+PY
+check "gt_quality error images" test -s "$work/errors/sunny_map00_seq00_000000.png"
+check "gt_quality on the PanoFlow tree" bash -c "'$bin/gt_quality' '$work/a/panoflow' -q | grep -q '^panoflow'"
+check "gt_quality with globs" bash -c "'$bin/gt_quality' -q --panorama --images '$work/a/sequences/map00_seq00/erp/color/*.png' --flows '$work/a/sequences/map00_seq00/erp/flow/*.flo' | grep -qE '^all +3 '"
+check "gt_quality: not a dataset" fails_clearly "not a known flow dataset layout" "$bin/gt_quality" "$work/a/card"
+mkdir -p "$work/br/sequences" && cp -r "$work/a/sequences/map00_seq00" "$work/br/sequences/"
+head -c 50 "$work/a/sequences/map00_seq00/erp/flow/000001.flo" >"$work/br/sequences/map00_seq00/erp/flow/000001.flo"
+check "gt_quality: a corrupt flow file is named" fails_clearly "000001.flo: truncated" "$bin/gt_quality" "$work/br" -q
 check "flowscape_preview" "$bin/flowscape_preview" "$work/a" --sequences map00_seq05 --width 48 -o "$work/previews"
 check "preview sheet and video" test -s "$work/previews/map00_seq05.png" -a -s "$work/previews/map00_seq05.mp4"
 

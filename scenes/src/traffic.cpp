@@ -55,6 +55,7 @@ class Traffic {
       Vehicle v;
       v.length = start.length, v.wish = std::min(start.speed, layout.lanes[start.lane].speed);
       v.lane = start.lane, v.s = start.s, v.next_lane = choose_next(start.lane);
+      v.speed = v.wish;  // already driving; the first step brakes if the road ahead is not free
       vehicles_.push_back(std::move(v));
     }
   }
@@ -287,8 +288,8 @@ std::vector<Track> simulate_vehicles(const Layout& layout, const std::vector<Veh
 std::vector<Track> simulate_walkers(const Layout& layout, const std::vector<SidewalkLoop>& loops,
                                     const std::vector<WalkerStart>& starts, double duration) {
   constexpr double kBody = 0.6, kGap = 0.6, kWalkHeadway = 0.8;
-  std::vector<double> s(starts.size()), speed(starts.size(), 0), travelled(starts.size(), 0);
-  for (std::size_t i = 0; i < starts.size(); ++i) s[i] = starts[i].s;
+  std::vector<double> s(starts.size()), speed(starts.size()), travelled(starts.size(), 0);
+  for (std::size_t i = 0; i < starts.size(); ++i) s[i] = starts[i].s, speed[i] = starts[i].speed;
   std::vector<Track> tracks(starts.size(), Track{kStep, {}, {}});
   const int samples = sample_count(duration);
   for (int n = 0; n < samples; ++n) {

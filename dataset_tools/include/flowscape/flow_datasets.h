@@ -1,0 +1,38 @@
+#pragma once
+// Image pairs and their ground-truth flow in the layouts of common optical-flow datasets, found
+// from a folder: a FlowScape release (sequences/), the PanoFlow tree (<split>/<weather>/img|flow),
+// MPI-Sintel (training/clean|final, training/flow, training/occlusions), KITTI 2012 (colored_0)
+// and 2015 (image_2) with flow_occ / flow_noc, FlyingChairs (*_img1.ppm, *_img2.ppm, *_flow.flo),
+// or any two globs.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace flowscape {
+
+enum class VisibleMask {
+  None,
+  NonZero,    // an 8-bit image, non-zero = visible (FlowScape valid)
+  Zero,       // an 8-bit image, non-zero = occluded (Sintel occlusions)
+  FlowValid,  // a KITTI flow PNG whose valid bit marks the non-occluded pixels (flow_noc)
+};
+
+struct PairFiles {
+  std::filesystem::path image1, image2, flow, visible;
+  VisibleMask visible_kind = VisibleMask::None;
+  std::string group, category;  // group: sequence or scene; category: weather, pass, split
+  bool panorama = false;
+};
+
+struct FlowDataset {
+  std::string layout;  // flowscape, panoflow, sintel, kitti2012, kitti2015, flyingchairs, generic
+  std::vector<PairFiles> pairs;
+};
+
+// Throws FileError when the folder holds none of the known layouts.
+FlowDataset find_flow_dataset(const std::filesystem::path& root);
+// Images sorted by name pair up as (k, k + 1) with the k-th flow file: one image more than flows.
+// Patterns use * and ? in the file name part (the folder part is taken literally).
+FlowDataset glob_flow_dataset(const std::string& images, const std::string& flows, bool panorama);
+
+}  // namespace flowscape
