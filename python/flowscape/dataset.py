@@ -1,0 +1,136 @@
+"""FlowScape splits as a torch Dataset, from a release made by gen_flowscape / flowscape_split
+(splits/<split>.txt over sequences/) or from the PanoFlow tree (panoflow/<split>/<weather>/...)."""
+import json
+import os
+
+import numpy as np
+
+from .io import read_flo, read_image, UNKNOWN_FLOW
+
+SKY = 13
+
+
+def classic_flow(flow):
+    """360-degree ERP flow (shortest way round) -> classic flow (the target's column in [0, W))."""
+    width = flow.shape[1]
+    x = np.arange(width, dtype=np.float32)[None, :]
+    target = np.mod(x + flow[..., 0], width)
+    out = flow.copy()
+    out[..., 0] = target - x
+    return out
+
+
+class FlowScape:
+    """A torch-style Dataset (len / getitem) of flow pairs.
+
+    Each item is (img1, img2, flow, valid) as RAFT-style loops take them: float32 tensors
+    3 x H x W (0-255), 3 x H x W, 2 x H x W (pixels) and H x W (1.0 where the flow is usable).
+    With `extras`, a fifth element is a dict holding what was asked: 'semantic' (H x W int64,
+    FlowScape layout only), 'meta' (scene, frame, weather, map).
+
+    root: a release folder (or its panoflow/ folder); split: 'train' or 'test';
+    weathers: None or a list such as ['fog', 'rain']; flow_mode: '360' or 'classic';
+    exclude_sky: drop sky pixels from valid (needs semantics); transform: called on the sample
+    dict {'img1', 'img2', 'flow', 'valid', ...} (numpy, H x W x C) before it becomes tensors.
+    """
+
+    def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
+                 extras=(), transform=None, as_tensors=True):
+        if split not in ("train", "test"):
+            raise ValueError(f"split must be 'train' or 'test', not {split!r}")
+        if flow_mode not in ("360", "classic"):
+            raise ValueError(f"flow_mode must be '360' or 'classic', not {flow_mode!r}")
+        self.root, self.flow_mode, self.exclude_sky = str(root), flow_mode, exclude_sky
+        self.extras, self.transform, self.as_tensors = tuple(extras), transform, as_tensors
+        if os.path.isfile(os.path.join(self.root, "splits", f"{split}.txt")):
+            self.layout, self.items = "flowscape", self._release_items(split, weathers)
+        else:
+            self.layout, self.items = "panoflow", self._panoflow_items(split, weathers)
+        if (exclude_sky or "semantic" in self.extras) and self.layout != "flowscape":
+            raise ValueError(f"{self.root}: semantics (exclude_sky) need the release layout, "
+                             "the PanoFlow tree has none")
+        if not self.items:
+            raise ValueError(f"{self.root}: no {split} pairs" + (f" for {weathers}" if weathers else ""))
+
+    def _release_items(self, split, weathers):
+        weather_of, items = {}, []
+        for line in open(os.path.join(self.root, "splits", f"{split}.txt")):
+            if not line.strip():
+                continue
+            scene, frame = line.split()
+            if scene not in weather_of:
+                meta = json.load(open(os.path.join(self.root, "sequences", scene, "meta.json")))
+                weather_of[scene] = (meta["weather"]["preset"], meta["map_name"])
+            weather, map_name = weather_of[scene]
+            if weathers is None or weather in weathers:
+                base = os.path.join(self.root, "sequences", scene, "erp")
+                nxt = f"{int(frame) + 1:06d}"
+                items.append({"img1": f"{base}/color/{frame}.png", "img2": f"{base}/color/{nxt}.png",
+                              "flow": f"{base}/flow/{frame}.flo", "valid": f"{base}/valid/{frame}.png",
+                              "semantic": f"{base}/semantic/{frame}.png",
+                              "meta": {"scene": scene, "frame": int(frame), "weather": weather,
+                                       "map": map_name}})
+        return items
+
+    def _panoflow_items(self, split, weathers):
+        root = self.root if os.path.basename(self.root) == "panoflow" else os.path.join(self.root, "panoflow")
+        side = os.path.join(root, split)
+        if not os.path.isdir(side):
+            raise ValueError(f"{self.root}: neither splits/{split}.txt nor panoflow/{split}/ "
+                             "(run flowscape_split on the release)")
+        items = []
+        for weather in sorted(os.listdir(side)):
+            if weathers is not None and weather not in weathers:
+                continue
+            for scene in sorted(os.listdir(os.path.join(side, weather, "img"))):
+                images = sorted(os.listdir(os.path.join(side, weather, "img", scene)))
+                for first, second in zip(images, images[1:]):
+                    stem = first.rsplit(".", 1)[0]
+                    items.append({"img1": os.path.join(side, weather, "img", scene, first),
+                                  "img2": os.path.join(side, weather, "img", scene, second),
+                                  "flow": os.path.join(side, weather, "flow", scene, stem + ".flo"),
+                                  "meta": {"scene": scene, "frame": int(stem), "weather": weather}})
+        return items
+
+    def __len__(self):
+        return len(self.items)
+
+    def sample(self, index):
+        """The item as numpy arrays (H x W x C), before the transform and tensors."""
+        item = self.items[index]
+        flow = read_flo(item["flow"])
+        known = (np.abs(flow) < 1e9).all(axis=2)
+        flow = np.where(known[..., None], flow, 0).astype(np.float32)
+        valid = known.copy()
+        if "valid" in item:
+            valid &= read_image(item["valid"])[..., 0] > 0
+        sample = {"img1": read_image(item["img1"])[..., :3].astype(np.float32),
+                  "img2": read_image(item["img2"])[..., :3].astype(np.float32),
+                  "flow": classic_flow(flow) if self.flow_mode == "classic" else flow,
+                  "valid": valid.astype(np.float32), "meta": dict(item["meta"])}
+        if self.exclude_sky or "semantic" in self.extras:
+            semantic = read_image(item["semantic"])[..., 0].astype(np.int64)
+            if self.exclude_sky:
+                sample["valid"] *= (semantic != SKY)
+            sample["semantic"] = semantic
+        return sample
+
+    def __getitem__(self, index):
+        sample = self.sample(index)
+        if self.transform is not None:
+            sample = self.transform(sample)
+        if not self.as_tensors:
+            return sample
+        import torch
+        out = (torch.from_numpy(np.ascontiguousarray(sample["img1"].transpose(2, 0, 1))),
+               torch.from_numpy(np.ascontiguousarray(sample["img2"].transpose(2, 0, 1))),
+               torch.from_numpy(np.ascontiguousarray(sample["flow"].transpose(2, 0, 1))),
+               torch.from_numpy(np.ascontiguousarray(sample["valid"])))
+        if not self.extras:
+            return out
+        extra = {}
+        if "semantic" in self.extras:
+            extra["semantic"] = torch.from_numpy(sample["semantic"])
+        if "meta" in self.extras:
+            extra["meta"] = sample["meta"]
+        return out + (extra,)

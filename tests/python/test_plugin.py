@@ -1,0 +1,225 @@
+"""Tests of the Python plugin (run by CTest with PYTHONPATH=python:build/python)."""
+import math
+import os
+import subprocess
+
+import numpy as np
+import pytest
+import torch
+
+import flowscape
+from flowscape import augment, io
+
+BIN = os.environ.get("FLOWSCAPE_BIN", "build/apps")
+YAW = os.environ.get("FLOWSCAPE_YAW_RELEASE", "build/tests/yaw_release")
+
+
+@pytest.fixture(scope="session")
+def yaw_release(tmp_path_factory):
+    out = tmp_path_factory.mktemp("yaw")
+    subprocess.run([YAW, str(out)], check=True, capture_output=True)
+    return out
+
+
+@pytest.fixture(scope="session")
+def tiny_release(tmp_path_factory):
+    out = tmp_path_factory.mktemp("release")
+    subprocess.run([f"{BIN}/gen_flowscape", "--maps", "1", "--frames", "3", "--resolution", "32",
+                    "--face-size", "16", "--spp", "1", "--vehicles", "10", "--pedestrians", "5",
+                    "--out", str(out)], check=True, capture_output=True)
+    subprocess.run([f"{BIN}/flowscape_split", str(out)], check=True, capture_output=True)
+    return out
+
+
+def test_a_pure_yaw_pair_loads_with_the_known_flow(yaw_release):
+    img1, img2, flow, valid = flowscape.FlowScape(yaw_release, "train")[0]
+    assert img1.shape == img2.shape == (3, 32, 64) and flow.shape == (2, 32, 64)
+    assert img1.dtype == torch.float32 and float(img1.max()) <= 255
+    u = 64 * 3 / 360  # turning left by 3 deg moves everything right by W * 3 / 360 px
+    assert np.abs(flow[0].numpy() - u).max() < 1e-3
+    assert np.abs(flow[1].numpy()).max() < 1e-3
+    assert float(valid.mean()) > 0.95
+    classic = flowscape.FlowScape(yaw_release, "train", flow_mode="classic")[0][2][0].numpy()
+    x = np.arange(64)[None, :]
+    expected = np.where(x + u >= 64, u - 64, u)  # the target's column kept inside the image
+    assert np.abs(classic - expected).max() < 1e-3
+    no_sky = flowscape.FlowScape(yaw_release, "train", exclude_sky=True, extras=("semantic", "meta"))
+    _, _, _, valid_ground, extra = no_sky[0]
+    assert extra["meta"]["weather"] == "sunny"
+    assert (valid_ground.numpy()[extra["semantic"].numpy() == 13] == 0).all()
+    assert float(valid_ground.sum()) < float(valid.sum())
+
+
+def _pinhole_sample(h=48, w=64, seed=1):
+    rng = np.random.default_rng(seed)
+    y, x = np.mgrid[0:h, 0:w].astype(np.float64)
+    flow = np.stack([0.3 + 0.01 * x, -0.2 + 0.005 * y], axis=2).astype(np.float32)  # affine
+    images = [rng.uniform(0, 255, (h, w, 3)).astype(np.float32) for _ in range(2)]
+    return {"img1": images[0], "img2": images[1], "flow": flow,
+            "valid": np.ones((h, w), np.float32)}
+
+
+def _affine_flow(px, py):
+    return 0.3 + 0.01 * px, -0.2 + 0.005 * py
+
+
+def test_fda_e_flow_equals_projecting_both_ends_through_the_distortion():
+    h, w, ty, tz, fh, fv = 48, 64, 1.1, 0.7, 1.6, 1.3
+    out = augment.fda_e(_pinhole_sample(h, w), np.random.default_rng(0), theta_y=ty, theta_z=tz,
+                        fov_h=fh, fov_v=fv)
+    cy, sy, cz, sz = math.cos(ty), math.sin(ty), math.cos(tz), math.sin(tz)
+    rot = [[cz * cy, -sz, cz * sy], [sz * cy, cz, sz * sy], [-sy, 0, cy]]  # R_z R_y by hand
+    fx, fy = w / (2 * math.tan(fh / 2)), h / (2 * math.tan(fv / 2))
+    checked = 0
+    for ye in range(h):
+        for xe in range(w):
+            if out["valid"][ye, xe] == 0:
+                continue
+            polar, azimuth = math.pi * (ye + 0.5) / h, 2 * math.pi * (xe + 0.5) / w
+            s = [math.sin(polar) * math.cos(azimuth), math.sin(polar) * math.sin(azimuth),
+                 math.cos(polar)]
+            p = [sum(rot[i][j] * s[j] for j in range(3)) for i in range(3)]
+            px = fx * p[1] / p[0] + w / 2 - 0.5  # start, source index coordinates
+            py = fy * p[2] / p[0] + h / 2 - 0.5
+            du, dv = _affine_flow(px, py)
+            ex, ey = px + du + 0.5, py + dv + 0.5  # end, continuous coordinates
+            ray = [1, (ex - w / 2) / fx, (ey - h / 2) / fy]
+            back = [sum(rot[j][i] * ray[j] for j in range(3)) for i in range(3)]  # R^T ray
+            norm = math.sqrt(sum(c * c for c in back))
+            end_y = h * math.acos(back[2] / norm) / math.pi
+            end_x = (w * math.atan2(back[1], back[0]) / (2 * math.pi)) % w
+            u = (end_x - (xe + 0.5) + w / 2) % w - w / 2
+            assert abs(out["flow"][ye, xe, 0] - u) < 0.02
+            assert abs(out["flow"][ye, xe, 1] - (end_y - (ye + 0.5))) < 0.02
+            checked += 1
+    assert checked > 100
+
+
+def test_fda_r_flow_equals_distorting_both_ends():
+    h, w, k2, k4 = 48, 64, 8e-5, 2e-9
+    out = augment.fda_r(_pinhole_sample(h, w), np.random.default_rng(0), k2=k2, k4=k4)
+    xc, yc = (w - 1) / 2, (h - 1) / 2
+
+    def distort(x, y):
+        r2 = (x - xc) ** 2 + (y - yc) ** 2
+        s = 1 + k2 * r2 + k4 * r2 * r2
+        return xc + (x - xc) * s, yc + (y - yc) * s
+
+    checked = 0
+    for yd in range(0, h, 3):
+        for xd in range(0, w, 3):
+            if out["valid"][yd, xd] == 0:
+                continue
+            lo, hi = 0.0, 2.0  # the undistorted point on the ray from the centre, by bisection
+            for _ in range(60):
+                mid = (lo + hi) / 2
+                x, y = distort(xc + (xd - xc) * mid, yc + (yd - yc) * mid)
+                if math.hypot(x - xc, y - yc) < math.hypot(xd - xc, yd - yc):
+                    lo = mid
+                else:
+                    hi = mid
+            xu, yu = xc + (xd - xc) * lo, yc + (yd - yc) * lo
+            du, dv = _affine_flow(xu, yu)
+            ex, ey = distort(xu + du, yu + dv)
+            assert abs(out["flow"][yd, xd, 0] - (ex - xd)) < 0.02
+            assert abs(out["flow"][yd, xd, 1] - (ey - yd)) < 0.02
+            checked += 1
+    assert checked > 100
+
+
+def test_numpy_and_cpp_paths_agree(tiny_release, monkeypatch):
+    assert io.native_available(), "build the flowscape_native extension (CMake) for this test"
+    rng = np.random.default_rng(3)
+    image = rng.uniform(0, 255, (40, 50, 3)).astype(np.float32)
+    mx = rng.uniform(-3, 53, (30, 20)).astype(np.float32)
+    my = rng.uniform(0, 39, (30, 20)).astype(np.float32)
+    for wrap in (False, True):
+        native = augment.remap(image, mx, my, wrap)
+        numpy_path = augment._remap_numpy(image, mx, my, wrap)
+        assert np.abs(native - numpy_path).max() < 1e-3
+    png = next((tiny_release / "sequences" / "map00_seq00" / "erp" / "color").iterdir())
+    assert (io.read_png(png) == flowscape.read_image(png)).all()
+    sample = _pinhole_sample()
+    with_cpp = augment.fda_e(sample, np.random.default_rng(5))
+    monkeypatch.setattr(io, "_native", None)
+    with_numpy = augment.fda_e(sample, np.random.default_rng(5))
+    assert (with_cpp["valid"] == with_numpy["valid"]).all()
+    assert np.abs(with_cpp["flow"] - with_numpy["flow"]).max() < 1e-3
+    assert np.abs(with_cpp["img1"] - with_numpy["img1"]).max() < 1e-2
+
+
+def test_a_dataloader_with_workers_iterates_a_tiny_release(tiny_release):
+    dataset = flowscape.FlowScape(tiny_release, "train",
+                                  transform=flowscape.Augmentation(fda="e", crop=(24, 48)))
+    loader = torch.utils.data.DataLoader(dataset, batch_size=2, num_workers=2, shuffle=True)
+    batches = 0
+    for img1, img2, flow, valid in loader:
+        assert img1.shape[1:] == (3, 24, 48) and flow.shape[1:] == (2, 24, 48)
+        assert torch.isfinite(flow).all() and valid.max() <= 1
+        batches += 1
+    assert batches == math.ceil(len(dataset) / 2)
+    test = flowscape.FlowScape(tiny_release, "test")
+    train_scenes = {i["meta"]["scene"] for i in dataset.items}
+    assert not train_scenes & {i["meta"]["scene"] for i in test.items}
+    fog = flowscape.FlowScape(tiny_release, "train", weathers=["fog"], extras=("meta",))
+    assert all(item[4]["meta"]["weather"] == "fog" for item in fog)
+    tree = flowscape.FlowScape(tiny_release / "panoflow", "test")  # JPEG images
+    assert len(tree) == len(test) and tree[0][0].shape == (3, 32, 64)
+
+
+def test_a_panorama_shift_and_a_cyclic_crop_keep_the_flow_right(yaw_release):
+    sample = flowscape.FlowScape(yaw_release, "train").sample(0)
+    shifted = augment.horizontal_shift(sample, 17)
+    assert (shifted["flow"] == np.roll(sample["flow"], 17, axis=1)).all()
+    crop = augment.cyclic_crop(sample, 16, 40, np.random.default_rng(2))
+    assert crop["img1"].shape == (16, 40, 3)
+    u = 64 * 3 / 360
+    assert np.abs(crop["flow"][..., 0] - u).max() < 1e-3
+    jittered = augment.photometric_jitter(sample, np.random.default_rng(1))
+    assert jittered["img1"].shape == sample["img1"].shape
+    assert (jittered["flow"] == sample["flow"]).all()
+
+
+def test_epe_statistics_and_weather_rows(yaw_release):
+    gt = np.zeros((2, 4, 4), np.float32)
+    pred = gt.copy()
+    pred[0, 0, :] = 2  # four pixels 2 px off, twelve exact
+    stats = flowscape.epe_stats(pred, gt)
+    assert stats["epe"] == pytest.approx(0.5) and stats["px1"] == pytest.approx(0.75)
+    assert stats["px3"] == 1.0 and stats["pixels"] == 16
+    dataset = flowscape.FlowScape(yaw_release, "test", extras=("meta",))
+    u = 64 * 3 / 360
+
+    def model(img1, img2):  # a perfect "network" for a pure yaw
+        return torch.stack([torch.full(img1.shape[2:], u), torch.zeros(img1.shape[2:])])[None].repeat(img1.shape[0], 1, 1, 1)
+
+    rows = flowscape.evaluate_by_weather(model, dataset)
+    assert rows["all"]["epe"] < 1e-3 and rows["sunny"]["px1"] == 1.0
+    cyclic = flowscape.evaluate_by_weather(model, dataset, cyclic=True)
+    assert cyclic["all"]["epe"] < 1e-3
+
+
+def test_bad_input_is_named(tmp_path, yaw_release):
+    with pytest.raises(ValueError, match="splits/train.txt nor panoflow"):
+        flowscape.FlowScape(tmp_path, "train")
+    with pytest.raises(ValueError, match="split must be"):
+        flowscape.FlowScape(yaw_release, "val")
+    bad = tmp_path / "cut.flo"
+    bad.write_bytes((yaw_release / "sequences/yaw00_seq00/erp/flow/000000.flo").read_bytes()[:100])
+    with pytest.raises(ValueError, match="cut.flo: truncated"):
+        flowscape.read_flo(bad)
+    with pytest.raises(ValueError, match="not a PNG"):
+        io.read_png(bad)
+
+
+def test_the_package_installs_with_pip(tmp_path):
+    source = os.path.join(os.path.dirname(__file__), "..", "..", "python")
+    venv = tmp_path / "venv"
+    subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(venv)], check=True)
+    subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--no-build-isolation", "--no-index",
+                    os.path.abspath(source)], check=True, capture_output=True, cwd=tmp_path)
+    found = subprocess.run([str(venv / "bin" / "python"), "-c",
+                            "import flowscape; print(flowscape.__file__)"],
+                           check=True, capture_output=True, text=True, cwd=tmp_path,
+                           env={"PATH": os.environ.get("PATH", "")}).stdout
+    assert str(venv) in found
