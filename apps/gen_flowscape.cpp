@@ -67,6 +67,8 @@ int main(int argc, char** argv) {
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
   app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  bool check = false;
+  app.add_flag("--check", check, "only check the options and print the plan; write nothing");
   CLI11_PARSE(app, argc, argv);
   try {
     if (!config_file.empty()) {
@@ -96,6 +98,11 @@ int main(int argc, char** argv) {
     std::vector<SequencePlan> mine;
     for (const SequencePlan& plan : plan_sequences(c))
       if (in_shard(plan, c)) mine.push_back(plan);
+    if (check) {
+      std::printf("%zu sequences of %d frames; shard %d/%d makes %zu of them\n",
+                  plan_sequences(c).size(), c.frames, c.shard, c.shards, mine.size());
+      return 0;
+    }
     Progress progress("gen_flowscape", mine.size() * std::size_t(c.frames), "frames");
     for (const SequencePlan& plan : mine)
       write_sequence(c, plan, out, {[&] { progress.advance(); }, [&] { progress.skip(); }});

@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config clang-format
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtinygltf-dev libassimp-dev assimp-testmodels
+  slurm-wlm munge
   libeigen3-dev libopencv-dev nlohmann-json3-dev catch2 libtbb-dev libcli11-dev pybind11-dev
   python3-dev python3-numpy python3-pytest python3-torch python3-pip python3-setuptools python3-venv
 )

@@ -104,6 +104,10 @@ check "--config file" "$bin/gen_flowscape" --config "$work/config.json" --out "$
 check "the config's weather" grep -q '"preset": "rain"' "$work/d/sequences/map00_seq01/meta.json"
 check "shards write their share" "$bin/gen_flowscape" --config "$work/config.json" --shard 1/2 --out "$work/e"
 check "shard 1/2 has sequence 1 only" bash -c "[ -d '$work/e/sequences/map00_seq01' ] && [ ! -d '$work/e/sequences/map00_seq00' ] && [ -s '$work/e/manifests/shard-1-of-2.json' ]"
+check "merge refuses a missing shard" fails_clearly "no manifest from shard(s) 0 of 2: rerun them" "$bin/flowscape_merge" "$work/e"
+check "the other shard" "$bin/gen_flowscape" --config "$work/config.json" --shard 0/2 --out "$work/e"
+check "flowscape_merge --verify" "$bin/flowscape_merge" "$work/e" --verify
+check "merged shards = one process" diff -r "$work/d" "$work/e"
 
 check "bad shard" fails_clearly "shard K/N needs 0 <= K < N" "$bin/gen_flowscape" --shard 3/2 --out "$work/x"
 check "unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/gen_flowscape" --weather sunny,snow --out "$work/x"

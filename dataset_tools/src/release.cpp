@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -331,6 +332,77 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
                                      {"sequences_per_map", per_map}}},
                                    {"files", all}};
   write_text(out / "manifest.json", manifest.dump(1) + "\n");
+}
+
+namespace {
+
+std::vector<nlohmann::json> read_shard_manifests(const fs::path& out) {
+  const fs::path dir = out / "manifests";
+  if (!fs::is_directory(dir)) throw FileError(dir, "no shard manifests (did the shards run?)");
+  std::vector<nlohmann::json> shards;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::ifstream in(entry.path());
+    try {
+      shards.push_back(nlohmann::json::parse(in));
+    } catch (const nlohmann::json::exception& e) {
+      throw FileError(entry.path(), std::string("not a shard manifest: ") + e.what());
+    }
+  }
+  if (shards.empty()) throw FileError(dir, "no shard manifests (did the shards run?)");
+  return shards;
+}
+
+void check_sequence_complete(const fs::path& out, const ReleaseConfig& config,
+                             const SequencePlan& plan) {
+  const fs::path dir = sequence_dir(out, plan);
+  const int shard = plan.number % config.shards;
+  const std::string rerun = " (rerun shard " + std::to_string(shard) + ")";
+  if (!fs::exists(dir / "meta.json")) throw FileError(dir, "sequence missing" + rerun);
+  for (int f = 0; f < config.frames; ++f)
+    for (const std::string& file : frame_files(config, f))
+      if (!fs::exists(dir / file)) throw FileError(dir / file, "missing" + rerun);
+}
+
+}  // namespace
+
+ReleaseConfig merge_shards(const fs::path& out, bool verify) {
+  const std::vector<nlohmann::json> shards = read_shard_manifests(out);
+  ReleaseConfig config;
+  try {
+    config = release_config_from_json(shards.front().at("config"));
+    config.shards = shards.front().at("shards").get<int>();
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(out / "manifests", std::string("bad shard manifest: ") + e.what());
+  }
+  std::vector<bool> seen(std::size_t(std::max(1, config.shards)), false);
+  nlohmann::json files = nlohmann::json::object();
+  for (const nlohmann::json& shard : shards) {
+    if (shard.at("config") != shards.front().at("config") || shard.at("shards") != config.shards)
+      throw FileError(out / "manifests", "shards made with different configs");
+    seen.at(shard.at("shard").get<std::size_t>()) = true;
+    files.update(shard.at("files"));
+  }
+  std::string missing;
+  for (std::size_t k = 0; k < seen.size(); ++k)
+    if (!seen[k]) missing += (missing.empty() ? "" : ", ") + std::to_string(k);
+  if (!missing.empty())
+    throw FileError(out / "manifests", "no manifest from shard(s) " + missing + " of " +
+                                           std::to_string(config.shards) + ": rerun them");
+  const std::vector<SequencePlan> plans = plan_sequences(config);
+  for (const SequencePlan& plan : plans) check_sequence_complete(out, config, plan);
+  const nlohmann::json on_disk = verify ? file_hashes(out, plans) : nlohmann::json();
+  for (const auto& [path, entry] : files.items()) {
+    if (!fs::exists(out / path)) throw FileError(out / path, "listed by a shard but missing");
+    if (fs::file_size(out / path) != entry.at("bytes").get<std::uintmax_t>())
+      throw FileError(out / path, "size differs from its shard manifest");
+    if (verify && on_disk.value(path, nlohmann::json()) != entry)
+      throw FileError(out / path, "sha256 differs from its shard manifest");
+  }
+  config.shard = 0, config.shards = 1;
+  write_dataset_card(out, config);
+  write_manifest(out, config, files);
+  fs::remove_all(out / "manifests");
+  return config;
 }
 
 std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width) {

@@ -61,6 +61,12 @@ nlohmann::json file_hashes(const std::filesystem::path& out,
 // manifest.json: generator, config, counts per map and weather, files with sha256 and size.
 void write_manifest(const std::filesystem::path& out, const ReleaseConfig& config,
                     const nlohmann::json& files);
+// Joins what the shards of a release wrote (manifests/shard-K-of-N.json): checks that every
+// shard reported, that they share one config and that every planned sequence is complete (and,
+// with `verify`, every file's sha256), then writes the dataset card and manifest.json as one
+// process would have, and removes manifests/. Returns the config; throws naming what is missing.
+ReleaseConfig merge_shards(const std::filesystem::path& out, bool verify);
+
 // README.md: the dataset card, with example images under card/.
 void write_dataset_card(const std::filesystem::path& out, const ReleaseConfig& config);
 

@@ -1,0 +1,31 @@
+// flowscape_merge: after the shards of a release (gen_flowscape --shard K/N, on one machine or
+// many, into one folder) have run, checks the release is complete and writes its manifest and
+// dataset card, the same bytes one process would have written.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "flowscape/io.h"
+#include "flowscape/release.h"
+
+using namespace flowscape;
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Merge the shard manifests of a FlowScape release into manifest.json, after checking "
+      "that every shard reported and every sequence is complete."};
+  std::string out;
+  bool verify = false;
+  app.add_option("release", out, "release folder the shards wrote into")->required();
+  app.add_flag("--verify", verify, "recompute every file's sha256 and compare with the shards'");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const ReleaseConfig config = merge_shards(out, verify);
+    std::printf("%s/manifest.json: %d sequences, %d frames\n", out.c_str(),
+                config.maps * config.sequences_per_map,
+                config.maps * config.sequences_per_map * config.frames);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(diagnostics(), "flowscape_merge: error: %s\n", e.what());
+    return 1;
+  }
+}
