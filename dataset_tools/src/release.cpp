@@ -159,52 +159,38 @@ void validate(const ReleaseConfig& c) {
                                                                    std::to_string(c.shards) + ")");
 }
 
+namespace {
+
+// The JSON keys of a ReleaseConfig and the members they hold, written and read from this one list.
+template <class Config, class Visit>
+void for_each_field(Config& c, Visit&& visit) {
+  visit("maps", c.maps), visit("sequences_per_map", c.sequences_per_map);
+  visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
+  visit("spp", c.spp), visit("max_bounces", c.max_bounces), visit("weathers", c.weathers);
+  visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
+  visit("cube", c.cube);
+}
+
+}  // namespace
+
 nlohmann::json to_json(const ReleaseConfig& c) {
-  return {{"maps", c.maps},
-          {"sequences_per_map", c.sequences_per_map},
-          {"frames", c.frames},
-          {"resolution", c.height},
-          {"face_size", c.face_size},
-          {"spp", c.spp},
-          {"max_bounces", c.max_bounces},
-          {"weathers", c.weathers},
-          {"vehicles", c.vehicles},
-          {"pedestrians", c.pedestrians},
-          {"seed", c.seed},
-          {"cube", c.cube}};
+  nlohmann::json j = nlohmann::json::object();
+  for_each_field(c, [&](const char* key, const auto& value) { j[key] = value; });
+  return j;
 }
 
 ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c) {
   if (!j.is_object()) throw std::invalid_argument("release config: expected a JSON object");
+  nlohmann::json merged = to_json(c);
+  for (const auto& [key, value] : j.items()) {
+    if (!merged.contains(key))
+      throw std::invalid_argument("release config: unknown key \"" + key + "\"");
+    merged[key] = value;
+  }
   try {
-    for (const auto& [key, value] : j.items()) {
-      if (key == "maps")
-        c.maps = value.get<int>();
-      else if (key == "sequences_per_map")
-        c.sequences_per_map = value.get<int>();
-      else if (key == "frames")
-        c.frames = value.get<int>();
-      else if (key == "resolution")
-        c.height = value.get<int>();
-      else if (key == "face_size")
-        c.face_size = value.get<int>();
-      else if (key == "spp")
-        c.spp = value.get<int>();
-      else if (key == "max_bounces")
-        c.max_bounces = value.get<int>();
-      else if (key == "weathers")
-        c.weathers = value.get<std::vector<std::string>>();
-      else if (key == "vehicles")
-        c.vehicles = value.get<int>();
-      else if (key == "pedestrians")
-        c.pedestrians = value.get<int>();
-      else if (key == "seed")
-        c.seed = value.get<std::uint64_t>();
-      else if (key == "cube")
-        c.cube = value.get<bool>();
-      else
-        throw std::invalid_argument("release config: unknown key \"" + key + "\"");
-    }
+    for_each_field(c, [&](const char* key, auto& field) {
+      field = merged.at(key).get<std::decay_t<decltype(field)>>();
+    });
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("release config: ") + e.what());
   }

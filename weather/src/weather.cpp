@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <stdexcept>
 
 #include "flowscape/random.h"
@@ -201,36 +200,33 @@ void validate(const Weather& w) {
   require_range(w.wind, 0, 1, "wind");
 }
 
+namespace {
+
+// The JSON keys of a Weather's numbers and the members they hold, written and read from one list.
+template <class W, class Visit>
+void for_each_number(W& w, Visit&& visit) {
+  visit("sun_elevation", w.sun_elevation), visit("sun_azimuth", w.sun_azimuth);
+  visit("turbidity", w.turbidity), visit("cloudiness", w.cloudiness);
+  visit("fog_density", w.fog_density), visit("fog_height", w.fog_height);
+  visit("precipitation", w.precipitation), visit("wetness", w.wetness);
+  visit("puddles", w.puddles), visit("wind", w.wind);
+}
+
+}  // namespace
+
 nlohmann::json to_json(const Weather& w) {
-  return {{"preset", w.preset},
-          {"sun_elevation", w.sun_elevation},
-          {"sun_azimuth", w.sun_azimuth},
-          {"turbidity", w.turbidity},
-          {"cloudiness", w.cloudiness},
-          {"fog_density", w.fog_density},
-          {"fog_height", w.fog_height},
-          {"precipitation", w.precipitation},
-          {"wetness", w.wetness},
-          {"puddles", w.puddles},
-          {"wind", w.wind}};
+  nlohmann::json j = {{"preset", w.preset}};
+  for_each_number(w, [&](const char* key, double value) { j[key] = value; });
+  return j;
 }
 
 Weather weather_from_json(const nlohmann::json& j) {
   Weather w;
   try {
-    w.preset = j.at("preset").get<std::string>();
-    w = weather_preset(w.preset);
-    for (auto& [key, field] : std::map<std::string, double*>{{"sun_elevation", &w.sun_elevation},
-                                                             {"sun_azimuth", &w.sun_azimuth},
-                                                             {"turbidity", &w.turbidity},
-                                                             {"cloudiness", &w.cloudiness},
-                                                             {"fog_density", &w.fog_density},
-                                                             {"fog_height", &w.fog_height},
-                                                             {"precipitation", &w.precipitation},
-                                                             {"wetness", &w.wetness},
-                                                             {"puddles", &w.puddles},
-                                                             {"wind", &w.wind}})
-      if (j.contains(key)) *field = j.at(key).get<double>();
+    w = weather_preset(j.at("preset").get<std::string>());
+    for_each_number(w, [&](const char* key, double& field) {
+      if (j.contains(key)) field = j.at(key).get<double>();
+    });
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("weather: ") + e.what());
   }
@@ -251,7 +247,7 @@ Environment weather_environment(const Weather& w) {
   e.sun_irradiance = Rgb(3.0f, 2.85f, 2.6f).cwiseProduct(warm) * air *
                      float((1 - 0.92 * w.cloudiness) * (1 - 0.6 * w.precipitation));
   e.sun_angular_radius = 0.00465 + 0.25 * w.cloudiness * w.cloudiness;  // clouds spread the sun
-  e.sun_disc_visibility = float(std::pow(1 - w.cloudiness, 3));          // and hide its disc
+  e.sun_disc_visibility = float(std::pow(1 - w.cloudiness, 3));         // and hide its disc
   sky(w, height, e);
   e.fog.density = w.fog_density, e.fog.height = w.fog_height;
   return e;
