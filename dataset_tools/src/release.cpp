@@ -250,21 +250,21 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const fs::path dir = sequence_dir(out, plan);
   fs::create_directories(dir);
   remove_partial_files(dir);
-  std::vector<int> todo;
+  std::vector<int> frames_to_render;
   for (int f = 0; f < config.frames; ++f) {
     if (all_exist(dir, frame_files(config, f)))
       progress.frame_skipped();
     else
-      todo.push_back(f);
+      frames_to_render.push_back(f);
   }
-  if (todo.empty() && fs::exists(dir / "meta.json")) return;
+  if (frames_to_render.empty() && fs::exists(dir / "meta.json")) return;
   Sequence s = make_sequence(config, plan);
   if (!fs::exists(dir / "meta.json"))
     write_text(dir / "meta.json", meta_json(config, plan, s).dump(1) + "\n");
   Renderer renderer(s.city.scene);
   const CubeToErp map =
       config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
-  for (int f : todo) {
+  for (int f : frames_to_render) {
     write_frame(config, plan, renderer, s.city, config.cube ? &map : nullptr, dir, f);
     progress.frame_done();
   }
