@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   ReleaseConfig c;  // the defaults make the paper's FlowScape
   std::string out = "dataset", config_file, shard, weathers;
   int threads = 0;
-  app.add_option("-o,--out", out, "release folder");
+  auto* out_option = app.add_option("-o,--out", out, "release folder");
   app.add_option("--config", config_file, "JSON with any of the options below (command line wins)");
   auto* maps = app.add_option("--maps", c.maps, "city maps (1-8)");
   auto* seqs = app.add_option("--sequences-per-map", c.sequences_per_map, "sequences per map");
@@ -67,7 +67,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
   app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
-  bool check = false;
+  bool check = false, demo = false;
+  app.add_flag("--demo", demo,
+               "a small release in demo/ (1 map, 2 sequences of 4 frames, 128 x 256, 8 spp) unless "
+               "options say otherwise");
   app.add_flag("--check", check, "only check the options and print the plan; write nothing");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -84,6 +87,16 @@ int main(int argc, char** argv) {
       if (vehicles->count()) c.vehicles = given.vehicles;
       if (pedestrians->count()) c.pedestrians = given.pedestrians;
       if (seed->count()) c.seed = given.seed;
+    }
+    if (demo) {
+      if (!maps->count()) c.maps = 1;
+      if (!seqs->count()) c.sequences_per_map = 2;
+      if (!frames->count()) c.frames = 4;
+      if (!res->count()) c.height = 128;
+      if (!face->count()) c.face_size = 64;
+      if (!spp->count()) c.spp = 8;
+      if (!weather->count()) c.weathers = {"sunny", "rain"};
+      if (!out_option->count()) out = "demo";
     }
     if (weather->count()) {
       c.weathers.clear();

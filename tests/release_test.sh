@@ -97,6 +97,8 @@ check "identical manifests" cmp "$work/a/manifest.json" "$work/b/manifest.json"
 check "identical files" diff -r "$work/a/sequences" "$work/b/sequences"
 check "a finished release is not redone" bash -c "'$bin/gen_flowscape' ${small[*]} --out '$work/b' 2>&1 | grep -q '64/64 frames'"
 
+check "gen_flowscape --demo (the README's first command)" "$bin/gen_flowscape" --demo --out "$work/demo"
+check "the demo release" test -s "$work/demo/manifest.json" -a -d "$work/demo/sequences/map00_seq01/cube/front/flow"
 check "--no-cube writes ERP only" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 16 --spp 1 --no-cube --out "$work/c"
 check "no cube folder" test ! -e "$work/c/sequences/map00_seq00/cube"
 echo '{"maps": 1, "sequences_per_map": 2, "frames": 2, "resolution": 16, "face_size": 8, "spp": 1, "weathers": ["rain"]}' >"$work/config.json"

@@ -132,8 +132,10 @@ void EmbreeScene::pose_instances(RTCScene top, double t, std::vector<Pose>& pose
 }
 
 void EmbreeScene::set_times(double now, double next) {
+  if (posed_ && now == time_now_ && next == time_next_) return;  // the six faces of one frame
   pose_instances(now_, now, poses_now_);
   pose_instances(next_, next, poses_next_);
+  posed_ = true, time_now_ = now, time_next_ = next;
 }
 
 Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {

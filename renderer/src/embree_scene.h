@@ -45,7 +45,8 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  void set_times(double now, double next);  // poses the instances of both top-level scenes
+  // Poses the instances of both top-level scenes (nothing to do when the times are the last ones).
+  void set_times(double now, double next);
   Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
   // Whether anything lies within `distance` along the ray (infinity: anywhere).
   bool occluded(bool at_next, const Vec3& origin, const Vec3& direction, double distance) const;
@@ -71,6 +72,8 @@ class EmbreeScene {
   std::vector<RTCScene> bvhs_;
   RTCScene now_ = nullptr, next_ = nullptr;
   std::vector<Pose> poses_now_, poses_next_;
+  bool posed_ = false;
+  double time_now_ = 0, time_next_ = 0;  // of the poses above
 };
 
 }  // namespace flowscape
