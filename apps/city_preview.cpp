@@ -3,11 +3,11 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <opencv2/imgproc.hpp>
 
 #include "flowscape/city.h"
 #include "flowscape/color.h"
+#include "flowscape/contact_sheet.h"
 #include "flowscape/flow_viz.h"
 #include "flowscape/io.h"
 #include "flowscape/model_io.h"
@@ -28,15 +28,9 @@ struct Options {
   std::vector<std::string> weathers;  // when given: one row per weather, of the first map
 };
 
-void paste(Image<std::uint8_t>& sheet, const Image<std::uint8_t>& tile, int x0, int y0) {
-  for (int y = 0; y < tile.height; ++y)
-    std::copy(tile.pixel(0, y), tile.pixel(0, y) + 3 * tile.width, sheet.pixel(x0, y0 + y));
-}
-
 // One row of the sheet: colour | flow | semantics of map `map` at the options' time, in a weather
 // preset (empty: the default sunny sky).
-void render_row(const Options& o, int map, const std::string& weather, Image<std::uint8_t>& sheet,
-                int row) {
+std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   CityConfig config;
   config.map = map, config.seed = o.seed, config.vehicles = o.vehicles;
   config.pedestrians = o.pedestrians, config.duration = o.time + 0.1;
@@ -50,20 +44,18 @@ void render_row(const Options& o, int map, const std::string& weather, Image<std
   const Projection erp = Projection::equirectangular(o.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames);
   const Image<float> color = renderer.color(erp, frames, {o.spp, 4, o.seed});
-  const int W = erp.width, y0 = row * o.height;
-  paste(sheet, linear_to_srgb8(color.view()), 0, y0);
-  paste(sheet, flow_to_color(gt.flow.view(), gt.valid.view(), {}), W, y0);
-  paste(sheet, semantic_to_color(gt.semantic.view()), 2 * W, y0);
-  cv::Mat canvas(sheet.height, sheet.width, CV_8UC3, sheet.data.data());
-  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather,
-              cv::Point(6, y0 + 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
+  Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
+  cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
+  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
+              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);
     export_gltf(city.scene, o.time, base.string() + ".gltf");
-    std::ofstream(base.string() + ".json") << to_json(city).dump(2) << "\n";
+    write_text(base.string() + ".json", to_json(city).dump(2) + "\n");
   }
+  return {std::move(labelled), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
+          semantic_to_color(gt.semantic.view())};
 }
 
 }  // namespace
@@ -93,19 +85,19 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
     const std::size_t rows = o.weathers.empty() ? o.maps.size() : o.weathers.size();
-    Image<std::uint8_t> sheet(3 * 2 * o.height, int(rows) * o.height, 3);
+    std::vector<std::vector<Image<std::uint8_t>>> sheet;
     for (std::size_t row = 0; row < rows; ++row) {
       const auto start = std::chrono::steady_clock::now();
       const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
       const std::string weather = o.weathers.empty() ? "" : o.weathers[row];
-      render_row(o, map, weather, sheet, int(row));
+      sheet.push_back(render_row(o, map, weather));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows, map_name(map).c_str(),
                   weather.c_str(), seconds);
       std::fflush(stdout);
     }
-    write_image(o.out, sheet);
+    write_image(o.out, contact_sheet(sheet));
     std::printf("%s\n", o.out.c_str());
     return 0;
   } catch (const std::exception& e) {
