@@ -1,19 +1,20 @@
 // city_preview: one ERP frame of each city map (colour, flow, semantics side by side) in a
-// contact-sheet PNG; optionally each map as glTF with its scene record, to inspect in any viewer.
+// contact-sheet PNG, rendered as a release renders it (the same Sequence: the weather preset varied
+// by the seed); optionally each map as glTF with its scene record, to inspect in any viewer.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
-#include "flowscape/city.h"
-#include "flowscape/color.h"
-#include "flowscape/contact_sheet.h"
-#include "flowscape/flow_viz.h"
-#include "flowscape/io.h"
-#include "flowscape/model_io.h"
-#include "flowscape/renderer.h"
-#include "flowscape/semantic_viz.h"
-#include "flowscape/weather.h"
+#include "flowscape/core/files.h"
+#include "flowscape/formats/contact_sheet.h"
+#include "flowscape/formats/flow_viz.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/semantic_viz.h"
+#include "flowscape/formats/srgb.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/scenes/model_io.h"
 
 using namespace flowscape;
 
@@ -28,22 +29,17 @@ struct Options {
   std::vector<std::string> weathers;  // when given: one row per weather, of the first map
 };
 
-// One row of the sheet: colour | flow | semantics of map `map` at the options' time, in a weather
-// preset (empty: the default sunny sky).
+// One row of the sheet: colour | flow | semantics of map `map` in a weather preset, at the frame
+// nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
-  CityConfig config;
-  config.map = map, config.seed = o.seed, config.vehicles = o.vehicles;
-  config.pedestrians = o.pedestrians, config.duration = o.time + 0.1;
-  config.ego_start = o.ego_start;
-  City city = make_city(config);
-  if (!weather.empty())
-    apply_weather(
-        weather_preset(weather), o.seed, [&city](double t) { return city.rig(t); }, city.scene);
-  Renderer renderer(city.scene);
-  const FramePair frames{o.time, o.time + 1.0 / 30, city.rig(o.time), city.rig(o.time + 1.0 / 30)};
+  const int frame = int(std::lround(o.time * kFrameRate));
+  const Sequence sequence =
+      make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2});
+  Renderer renderer(sequence.city.scene);
+  const FramePair frames = sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames);
-  const Image<float> color = renderer.color(erp, frames, {o.spp, 4, o.seed});
+  const Image<float> color = renderer.color(erp, frames, {o.spp, 4, sequence.color_seed(frame)});
   Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
   cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
   cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
@@ -51,8 +47,8 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);
-    export_gltf(city.scene, o.time, base.string() + ".gltf");
-    write_text(base.string() + ".json", to_json(city).dump(2) + "\n");
+    export_gltf(sequence.city.scene, frames.time, base.string() + ".gltf");
+    write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
   }
   return {std::move(labelled), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
           semantic_to_color(gt.semantic.view())};
@@ -63,22 +59,24 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
 int main(int argc, char** argv) {
   CLI::App app{
       "Render one ERP frame of each procedural city map into a contact sheet: colour, "
-      "ground-truth flow (PanoFlow wheel) and semantics (CARLA palette) per row."};
+      "ground-truth flow (PanoFlow wheel) and semantics (CARLA palette) per row, as a release "
+      "renders them."};
   Options o;
   app.add_option("-o,--out", o.out, "contact sheet PNG");
   app.add_option("--height", o.height, "ERP height in pixels (width = 2 x height)")
       ->check(CLI::Range(16, 2048));
   app.add_option("--spp", o.spp, "path-traced samples per pixel")->check(CLI::Range(1, 4096));
-  app.add_option("--seed", o.seed, "scene seed");
+  app.add_option("--seed", o.seed, "sequence seed (city, traffic, weather variant, noise)");
   app.add_option("--vehicles", o.vehicles, "vehicles per map")->check(CLI::Range(0, 200));
   app.add_option("--pedestrians", o.pedestrians, "pedestrians per map")->check(CLI::Range(0, 200));
   app.add_option("--ego-start", o.ego_start, "start point of the ego vehicle (0-99)")
       ->check(CLI::Range(0, 99));
-  app.add_option("--time", o.time, "seconds into the sequence")->check(CLI::Range(0.0, 600.0));
+  app.add_option("--time", o.time, "seconds into the sequence (rounded to a frame)")
+      ->check(CLI::Range(0.0, 600.0));
   app.add_option("--maps", o.maps, "map numbers (0-7)")->check(CLI::Range(0, kMapCount - 1));
   app.add_option("--weathers", o.weathers,
                  "one row per weather preset (sunny cloud fog rain wet wet_cloudy soft_rain "
-                 "hard_rain clear_sunset foggy_rain) of the first map");
+                 "hard_rain clear_sunset foggy_rain) of the first map; default: sunny");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
   CLI11_PARSE(app, argc, argv);
@@ -89,7 +87,7 @@ int main(int argc, char** argv) {
     for (std::size_t row = 0; row < rows; ++row) {
       const auto start = std::chrono::steady_clock::now();
       const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
-      const std::string weather = o.weathers.empty() ? "" : o.weathers[row];
+      const std::string weather = o.weathers.empty() ? "sunny" : o.weathers[row];
       sheet.push_back(render_row(o, map, weather));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

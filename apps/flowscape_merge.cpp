@@ -4,8 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "flowscape/io.h"
-#include "flowscape/release.h"
+#include "flowscape/core/files.h"
+#include "flowscape/release/manifest.h"
 
 using namespace flowscape;
 

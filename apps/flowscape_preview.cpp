@@ -5,11 +5,12 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "flowscape/contact_sheet.h"
-#include "flowscape/io.h"
-#include "flowscape/progress.h"
-#include "flowscape/release.h"
-#include "flowscape/split.h"
+#include "flowscape/core/progress.h"
+#include "flowscape/formats/contact_sheet.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/release/preview.h"
+#include "flowscape/release/split.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
     if (sequences.empty()) throw FileError(release, "no such sequences");
     Progress progress("flowscape_preview", sequences.size(), "sequences");
     for (const SequenceInfo& s : sequences) {
-      const fs::path dir = fs::path(release) / "sequences" / s.name;
+      const fs::path dir = sequence_dir(release, s.name);
       std::vector<std::vector<Image<std::uint8_t>>> rows;
       for (int f : {0, (s.frames - 1) / 2, s.frames - 2})
         rows.push_back(frame_preview_row(dir, f, width));

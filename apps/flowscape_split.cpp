@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <map>
 
-#include "flowscape/io.h"
-#include "flowscape/split.h"
+#include "flowscape/core/files.h"
+#include "flowscape/release/split.h"
 
 using namespace flowscape;
 

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <map>
 
-#include "flowscape/flow_io.h"
-#include "flowscape/flow_viz.h"
-#include "flowscape/io.h"
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/flow_viz.h"
+#include "flowscape/formats/image_io.h"
 
 using namespace flowscape;
 

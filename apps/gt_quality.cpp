@@ -1,12 +1,12 @@
 // gt_quality: how well a flow dataset's ground truth explains its images (PE / WPE, design.md),
 // for FlowScape releases, the PanoFlow tree, MPI-Sintel, KITTI 2012/2015, FlyingChairs, or two
 // globs.
-#include "flowscape/gt_quality.h"
+#include "flowscape/quality/gt_quality.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "flowscape/io.h"
+#include "flowscape/core/files.h"
 
 using namespace flowscape;
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "flowscape/flow_io.h"
-#include "flowscape/gt_quality.h"
-#include "flowscape/io.h"
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/quality/gt_quality.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;

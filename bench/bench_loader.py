@@ -39,9 +39,8 @@ def main():
         subprocess.run([f"{binaries}/gen_flowscape", "--maps", "1", "--sequences-per-map", "1",
                         "--frames", "7", "--spp", "1", "--no-cube", "--weather", "sunny",
                         "--out", release], check=True, capture_output=True)
-        os.makedirs(os.path.join(release, "splits"))
-        with open(os.path.join(release, "splits", "train.txt"), "w") as out:
-            out.writelines(f"map00_seq00 {f:06d}\n" for f in range(6))
+        subprocess.run([f"{binaries}/flowscape_split", release, "--no-panoflow"], check=True,
+                       capture_output=True)
     print(f"bench_loader: {args.samples} samples of {release}, {args.workers} workers, "
           f"native extension {'yes' if flowscape.native_available() else 'no (numpy)'}")
     plain = rate(flowscape.FlowScape(release, "train"), args.samples, args.workers)

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "flowscape/release.h"
+#include "flowscape/release/writer.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;

@@ -1,7 +1,8 @@
 // Renderer throughput on a street-like fixture (ground, 300 buildings, 60 driving boxes, sun and
 // sky): primary-ray ground truth and path-traced colour in million rays per second per core, and
 // seconds per panoramic frame (6 x F^2 faces stitched to H x 2H ERP) next to a primary-rays-only
-// frame. Usage: bench_render [face size (0: no cube rig)] [ERP height] [samples per pixel] [threads]
+// frame. Usage: bench_render [face size (0: no cube rig)] [ERP height] [samples per pixel]
+// [threads]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -9,9 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "flowscape/renderer.h"
-#include "flowscape/stitch.h"
-#include "flowscape/test_scenes.h"
+#include "flowscape/renderer/renderer.h"
+#include "flowscape/scenes/test_scenes.h"
+#include "flowscape/stitcher/stitch.h"
 
 using namespace flowscape;
 
@@ -71,8 +72,8 @@ int main(int argc, char** argv) {
   Renderer renderer(scene);
   FramePair frames;
   frames.rig = Pose(Eigen::Translation3d(0, 0, 1.7));
-  frames.next_rig =
-      Pose(Eigen::Translation3d(10.0 / 30, 0, 1.7)) * Pose(Eigen::AngleAxisd(0.01, Vec3::UnitZ()));
+  frames.next_rig = Pose(Eigen::Translation3d(10.0 / kFrameRate, 0, 1.7)) *
+                    Pose(Eigen::AngleAxisd(0.01, Vec3::UnitZ()));
   const RenderOptions options{spp, argc > 5 ? std::atoi(argv[5]) : 4, 0};
   std::printf("bench_render: street fixture, %zu actors, %d threads, %d spp\n", scene.actors.size(),
               threads, spp);

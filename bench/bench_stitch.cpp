@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "flowscape/stitch.h"
-#include "flowscape/synthetic.h"
+#include "flowscape/stitcher/stitch.h"
+#include "flowscape/stitcher/synthetic.h"
 
 using namespace flowscape;
 

@@ -1,8 +1,18 @@
 #pragma once
-// A fresh folder under the system temp directory, removed with everything in it at scope exit.
+// Files in tests: a fresh folder under the system temp directory, removed with everything in it
+// at scope exit, and a file's bytes.
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
+
+inline std::string file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
 
 struct TempDir {
   std::filesystem::path path;

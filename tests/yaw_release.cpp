@@ -3,20 +3,30 @@
 // Usage: yaw_release OUT_DIR
 #include <cstdio>
 
-#include "flowscape/color.h"
-#include "flowscape/flow_io.h"
-#include "flowscape/io.h"
-#include "flowscape/renderer.h"
-#include "flowscape/test_scenes.h"
+#include "flowscape/core/files.h"
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/srgb.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/renderer/renderer.h"
+#include "flowscape/scenes/test_scenes.h"
 
 using namespace flowscape;
+namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   if (argc != 2) {
     std::fprintf(stderr, "usage: yaw_release OUT_DIR\n");
     return 2;
   }
-  const std::filesystem::path out = argv[1], erp_dir = out / "sequences" / "yaw00_seq00" / "erp";
+  ReleaseConfig config;
+  config.maps = 1, config.sequences_per_map = 1, config.frames = 2, config.height = 32;
+  config.cube = false;
+  const fs::path out = argv[1];
+  const SequencePlan plan = plan_sequences(config).front();
+  const fs::path seq = sequence_dir(out, plan.name);
   Scene scene = textured_plane(8, 60);
   scene.materials[0].checker_size = 0.7f;
   add_box(scene.world, {-30, -30, -3}, {30, 30, -2}, SemanticClass::Road);
@@ -25,23 +35,25 @@ int main(int argc, char** argv) {
   FramePair frames;
   frames.next_rig = Pose(Eigen::AngleAxisd(3 * kPi / 180, Vec3::UnitZ()));
   const FramePair next{frames.next_time, 2 * frames.next_time, frames.next_rig, frames.next_rig};
-  const Projection erp = Projection::equirectangular(32);
+  const Projection erp = Projection::equirectangular(config.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames),
                     gt_next = renderer.ground_truth(erp, next);
-  write_image(erp_dir / "color" / "000000.png",
-              linear_to_srgb8(renderer.color(erp, frames, {4, 2, 1}).view()));
-  write_image(erp_dir / "color" / "000001.png",
-              linear_to_srgb8(renderer.color(erp, next, {4, 2, 2}).view()));
-  write_flo(erp_dir / "flow" / "000000.flo", gt.flow.view());
-  write_image(erp_dir / "valid" / "000000.png", gt.valid);
-  write_image(erp_dir / "semantic" / "000000.png", gt.semantic);
-  write_image(erp_dir / "semantic" / "000001.png", gt_next.semantic);
-  write_text(
-      out / "sequences" / "yaw00_seq00" / "meta.json",
-      R"({"scene": "yaw00_seq00", "map_name": "yaw", "frames": 2, "weather": {"preset": "sunny"}})"
-      "\n");
-  for (const char* split : {"train.txt", "test.txt"})
-    write_text(out / "splits" / split, "yaw00_seq00 000000\n");
+  const auto file = [&](const char* kind, int frame) {
+    return seq / frame_file(output_kind(kind), std::nullopt, frame);
+  };
+  write_image(file("color", 0), linear_to_srgb8(renderer.color(erp, frames, {4, 2, 1}).view()));
+  write_image(file("color", 1), linear_to_srgb8(renderer.color(erp, next, {4, 2, 2}).view()));
+  write_flo(file("flow", 0), gt.flow.view());
+  write_image(file("valid", 0), gt.valid);
+  write_image(file("semantic", 0), gt.semantic);
+  write_image(file("semantic", 1), gt_next.semantic);
+  SequenceMeta meta;
+  meta.scene = plan.name, meta.map_name = "yaw", meta.weather = {{"preset", "sunny"}};
+  meta.frames = 2, meta.erp_height = config.height, meta.poses = {frames.rig, frames.next_rig};
+  write_meta(seq, meta);
+  for (const char* side : {"train", "test"})
+    write_text(split_file(out, side), plan.name + " " + frame_name(0) + "\n");
+  write_manifest(out, config, file_hashes(out, {plan}));
   std::printf("%s\n", out.c_str());
   return 0;
 }

@@ -4,10 +4,11 @@ EPE evaluation. Heavy per-pixel work runs in C++ (the `flowscape_native` extensi
 toolkit) when it is importable, in numpy otherwise; both give the same results."""
 from .io import read_flo, write_flo, read_image, native_available
 from .dataset import FlowScape
+from .layout import ReleaseLayout
 from .augment import (fda_r, fda_e, cyclic_crop, horizontal_shift, photometric_jitter,
                       Augmentation)
 from .evaluate import epe_stats, evaluate_by_weather, evaluate_cyclic
 
-__all__ = ["FlowScape", "read_flo", "write_flo", "read_image", "native_available", "fda_r",
+__all__ = ["FlowScape", "ReleaseLayout", "read_flo", "write_flo", "read_image", "native_available", "fda_r",
            "fda_e", "cyclic_crop", "horizontal_shift", "photometric_jitter", "Augmentation",
            "epe_stats", "evaluate_by_weather", "evaluate_cyclic"]

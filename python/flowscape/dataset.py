@@ -1,11 +1,12 @@
 """FlowScape splits as a torch Dataset, from a release made by gen_flowscape / flowscape_split
-(splits/<split>.txt over sequences/) or from the PanoFlow tree (panoflow/<split>/<weather>/...)."""
-import json
+(its splits over its sequences, found through the layout in manifest.json) or from the PanoFlow
+tree (panoflow/<split>/<weather>/...)."""
 import os
 
 import numpy as np
 
 from .io import read_flo, read_image, UNKNOWN_FLOW
+from .layout import ReleaseLayout
 
 SKY = 13
 
@@ -42,7 +43,7 @@ class FlowScape:
             raise ValueError(f"flow_mode must be '360' or 'classic', not {flow_mode!r}")
         self.root, self.flow_mode, self.exclude_sky = str(root), flow_mode, exclude_sky
         self.extras, self.transform, self.as_tensors = tuple(extras), transform, as_tensors
-        if os.path.isfile(os.path.join(self.root, "splits", f"{split}.txt")):
+        if os.path.isfile(os.path.join(self.root, "manifest.json")):
             self.layout, self.items = "flowscape", self._release_items(split, weathers)
         else:
             self.layout, self.items = "panoflow", self._panoflow_items(split, weathers)
@@ -53,23 +54,28 @@ class FlowScape:
             raise ValueError(f"{self.root}: no {split} pairs" + (f" for {weathers}" if weathers else ""))
 
     def _release_items(self, split, weathers):
+        layout = ReleaseLayout(self.root)
+        split_file = layout.split_file(split)
+        if not os.path.isfile(split_file):
+            raise ValueError(f"{split_file}: missing (run flowscape_split on the release)")
         weather_of, items = {}, []
-        for line in open(os.path.join(self.root, "splits", f"{split}.txt")):
+        for line in open(split_file):
             if not line.strip():
                 continue
             scene, frame = line.split()
+            frame = int(frame)
             if scene not in weather_of:
-                meta = json.load(open(os.path.join(self.root, "sequences", scene, "meta.json")))
+                meta = layout.meta(scene)
                 weather_of[scene] = (meta["weather"]["preset"], meta["map_name"])
             weather, map_name = weather_of[scene]
             if weathers is None or weather in weathers:
-                base = os.path.join(self.root, "sequences", scene, "erp")
-                nxt = f"{int(frame) + 1:06d}"
-                items.append({"img1": f"{base}/color/{frame}.png", "img2": f"{base}/color/{nxt}.png",
-                              "flow": f"{base}/flow/{frame}.flo", "valid": f"{base}/valid/{frame}.png",
-                              "semantic": f"{base}/semantic/{frame}.png",
-                              "meta": {"scene": scene, "frame": int(frame), "weather": weather,
-                                       "map": map_name}})
+                item = {kind: layout.frame_file(scene, kind, frame)
+                        for kind in ("flow", "valid", "semantic")}
+                item.update(img1=layout.frame_file(scene, "color", frame),
+                            img2=layout.frame_file(scene, "color", frame + 1),
+                            meta={"scene": scene, "frame": frame, "weather": weather,
+                                  "map": map_name})
+                items.append(item)
         return items
 
     def _panoflow_items(self, split, weathers):

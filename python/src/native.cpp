@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "flowscape/io.h"
+#include "flowscape/formats/image_io.h"
 
 namespace py = pybind11;
 using namespace flowscape;

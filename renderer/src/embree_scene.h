@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "flowscape/geometry.h"
-#include "flowscape/scene.h"
+#include "flowscape/scenes/scene.h"
+#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 

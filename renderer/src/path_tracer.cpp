@@ -8,17 +8,12 @@
 #include <cmath>
 #include <limits>
 
+#include "flowscape/core/random.h"
+
 namespace flowscape {
 namespace {
 
 using Rgb = Eigen::Vector3d;
-
-std::uint64_t mix_bits(std::uint64_t x) {  // splitmix64 finaliser
-  x += 0x9e3779b97f4a7c15ull;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 
 double unit(std::uint64_t bits) { return double(bits >> 11) * 0x1.0p-53; }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Internal: the colour pass of Renderer (see Renderer::color).
 #include "embree_scene.h"
-#include "flowscape/renderer.h"
+#include "flowscape/renderer/renderer.h"
 
 namespace flowscape {
 

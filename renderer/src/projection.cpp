@@ -1,4 +1,4 @@
-#include "flowscape/projection.h"
+#include "flowscape/renderer/projection.h"
 
 #include <cmath>
 

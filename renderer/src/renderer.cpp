@@ -1,4 +1,4 @@
-#include "flowscape/renderer.h"
+#include "flowscape/renderer/renderer.h"
 
 #include <tbb/parallel_for.h>
 
@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "embree_scene.h"
-#include "flowscape/stitch.h"
+#include "flowscape/stitcher/geometry.h"
 #include "path_tracer.h"
 
 namespace flowscape {

@@ -1,4 +1,4 @@
-#include "flowscape/city.h"
+#include "flowscape/scenes/city.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include "city_layout.h"
 #include "city_models.h"
 #include "city_world.h"
-#include "flowscape/model_io.h"
-#include "flowscape/shapes.h"
-#include "flowscape/random.h"
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/model_io.h"
+#include "flowscape/scenes/shapes.h"
 #include "traffic.h"
 
 namespace flowscape {
@@ -161,7 +161,13 @@ void validate(const CityConfig& c) {
   for (const auto& entry : c.models) kind_from_name(entry.first);
 }
 
-Pose City::rig(double t) const { return ego(t) * Pose(Eigen::Translation3d(0, 0, camera_height)); }
+Pose City::rig(double t) const { return rig_track()(t); }
+
+PoseTrack City::rig_track() const {
+  return [ego = ego, height = camera_height](double t) {
+    return ego(t) * Pose(Eigen::Translation3d(0, 0, height));
+  };
+}
 
 City make_city(const CityConfig& config) {
   validate(config);

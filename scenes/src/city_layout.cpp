@@ -4,14 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "flowscape/random.h"
+#include "flowscape/core/random.h"
 
 namespace flowscape {
 namespace {
 
 using V2 = Eigen::Vector2d;
 using B = Style::Buildings;
-constexpr double kPi = 3.141592653589793;
 
 const Style kStyles[kMapCount] = {
     // name, nx, ny, spacing, lanes, shoulder, sidewalk, buildings, heights, fill, trees, parks,

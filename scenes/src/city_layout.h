@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "flowscape/city.h"
+#include "flowscape/scenes/city.h"
 #include "path.h"
 
 namespace flowscape {

@@ -2,14 +2,14 @@
 
 #include <cmath>
 
-#include "flowscape/shapes.h"
+#include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
 namespace {
 
 using V3 = Eigen::Vector3d;
 using C = SemanticClass;
-constexpr double kPi = 3.141592653589793, kStride = 1.4;
+constexpr double kStride = 1.4;
 
 Pose at(double x, double y, double z) { return Pose(Eigen::Translation3d(x, y, z)); }
 

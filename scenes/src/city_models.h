@@ -3,8 +3,8 @@
 // wheels that roll with the distance travelled and limbs that swing with the walking cycle.
 #include <memory>
 
-#include "flowscape/city.h"
-#include "flowscape/random.h"
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/city.h"
 #include "traffic.h"
 
 namespace flowscape {

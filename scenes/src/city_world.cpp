@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "flowscape/shapes.h"
-#include "flowscape/random.h"
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
 namespace {

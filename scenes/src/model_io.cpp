@@ -1,4 +1,4 @@
-#include "flowscape/model_io.h"
+#include "flowscape/scenes/model_io.h"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -10,7 +10,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "flowscape/shapes.h"
+#include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
 namespace {

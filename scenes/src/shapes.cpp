@@ -1,4 +1,4 @@
-#include "flowscape/shapes.h"
+#include "flowscape/scenes/shapes.h"
 
 #include <cmath>
 

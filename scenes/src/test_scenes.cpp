@@ -1,4 +1,4 @@
-#include "flowscape/test_scenes.h"
+#include "flowscape/scenes/test_scenes.h"
 
 namespace flowscape {
 

@@ -5,13 +5,13 @@
 #include <limits>
 #include <numeric>
 
-#include "flowscape/random.h"
+#include "flowscape/core/random.h"
 
 namespace flowscape {
 namespace {
 
 using V2 = Eigen::Vector2d;
-constexpr double kStep = 1.0 / 60, kFrame = 1.0 / 30, kPi = 3.141592653589793;
+constexpr double kFrame = 1 / kFrameRate, kStep = kFrame / 2;  // two simulation steps per frame
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;  // vehicles
 constexpr double kLightCycle = 8.0, kApproach = 25.0;

@@ -1,4 +1,4 @@
-#include "flowscape/geometry.h"
+#include "flowscape/stitcher/geometry.h"
 
 #include <cmath>
 

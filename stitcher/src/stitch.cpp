@@ -1,4 +1,4 @@
-#include "flowscape/stitch.h"
+#include "flowscape/stitcher/stitch.h"
 
 #include <tbb/parallel_for.h>
 

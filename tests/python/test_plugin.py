@@ -1,4 +1,5 @@
 """Tests of the Python plugin (run by CTest with PYTHONPATH=python:build/python)."""
+import json
 import math
 import os
 import subprocess
@@ -205,7 +206,7 @@ def test_bad_input_is_named(tmp_path, yaw_release):
     with pytest.raises(ValueError, match="split must be"):
         flowscape.FlowScape(yaw_release, "val")
     bad = tmp_path / "cut.flo"
-    bad.write_bytes((yaw_release / "sequences/yaw00_seq00/erp/flow/000000.flo").read_bytes()[:100])
+    bad.write_bytes((yaw_release / "sequences/map00_seq00/erp/flow/000000.flo").read_bytes()[:100])
     with pytest.raises(ValueError, match="cut.flo: truncated"):
         flowscape.read_flo(bad)
     with pytest.raises(ValueError, match="not a PNG"):
@@ -223,3 +224,29 @@ def test_the_package_installs_with_pip(tmp_path):
                            check=True, capture_output=True, text=True, cwd=tmp_path,
                            env={"PATH": os.environ.get("PATH", "")}).stdout
     assert str(venv) in found
+
+
+def test_the_layout_in_the_manifest_finds_every_file_of_a_release(tiny_release):
+    layout = flowscape.ReleaseLayout(tiny_release)
+    faces = layout.layout["faces"]
+    assert faces == ["front", "right", "back", "left", "up", "down"]
+    found = set()
+    for kind, row in layout.kinds.items():
+        for frame in range(3 - (1 if row["pairs_only"] else 0)):
+            for face in [None] + faces:
+                path = layout.frame_file("map00_seq00", kind, frame, face)
+                assert os.path.isfile(path), path
+                found.add(os.path.relpath(path, tiny_release))
+    manifest = json.load(open(tiny_release / "manifest.json"))
+    listed = {p for p in manifest["files"] if p.startswith("sequences/map00_seq00/")
+              and not p.endswith("meta.json")}
+    assert found == listed  # the layout names exactly the files the release has
+    assert layout.meta("map00_seq00")["frames"] == 3
+
+
+def test_a_release_without_a_layout_is_named(tmp_path, yaw_release):
+    with pytest.raises(ValueError, match="manifest.json: missing"):
+        flowscape.ReleaseLayout(tmp_path)
+    (tmp_path / "manifest.json").write_text('{"generator": "flowscape 0.6", "files": {}}')
+    with pytest.raises(ValueError, match="manifest.json: no layout"):
+        flowscape.FlowScape(tmp_path, "train")

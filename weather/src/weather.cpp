@@ -1,18 +1,17 @@
-#include "flowscape/weather.h"
+#include "flowscape/weather/weather.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "flowscape/random.h"
-#include "flowscape/shapes.h"
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
 namespace {
 
 using V3 = Eigen::Vector3d;
 using Rgb = Eigen::Vector3f;
-constexpr double kPi = 3.141592653589793;
 
 Weather make(const char* name, double elevation, double azimuth, double turbidity,
              double cloudiness, double fog, double rain, double wetness, double puddles,

@@ -1,0 +1,17 @@
+#pragma once
+// The vector and pose types and the constants every stage shares (design.md: right-handed world,
+// z up, metres, seconds, frames at 30 Hz).
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace flowscape {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Pose = Eigen::Isometry3d;  // object -> world (metres; z up)
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kFrameRate = 30;  // frames per second of every sequence (design.md)
+
+}  // namespace flowscape

@@ -1,0 +1,36 @@
+#pragma once
+// Image files through OpenImageIO, written atomically; errors are FileErrors naming the file.
+// While images decode, fd 2 is pointed at /dev/null, because libpng (inside OpenImageIO) prints its
+// own "libpng error" line for a corrupt file before OpenImageIO hands the same error to us; we
+// report it in one line on diagnostics().
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "flowscape/core/files.h"
+#include "flowscape/core/image.h"
+
+namespace flowscape {
+
+// An image in the pixel type stored in its file (8-bit, 16-bit, or float for everything else).
+using AnyImage = std::variant<Image<std::uint8_t>, Image<std::uint16_t>, Image<float>>;
+AnyImage read_any_image(const std::filesystem::path& path);
+
+// Reads an image whose file stores exactly T (uint8_t, uint16_t or float); other types are an
+// error.
+template <class T>
+Image<T> read_image(const std::filesystem::path& path);
+
+// Writes in T's format (the file type from the extension: .png, .jpg, .exr, ...), atomically.
+// Channel names are optional (formats like EXR store them).
+template <class T>
+void write_image(const std::filesystem::path& path, ImageView<const T> image,
+                 const std::vector<std::string>& channel_names = {});
+template <class T>
+void write_image(const std::filesystem::path& path, const Image<T>& image) {
+  write_image(path, image.view());
+}
+
+}  // namespace flowscape

@@ -1,0 +1,58 @@
+#pragma once
+// What a release is made of (ReleaseConfig), where its values come from (defaults, --demo, a config
+// file, the command line), and which sequences that is (plan_sequences).
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace flowscape {
+
+struct ReleaseConfig {
+  int maps = 8, sequences_per_map = 8, frames = 100;
+  int height = 512;     // ERP height; width = 2 x height
+  int face_size = 256;  // cube faces: 256 matches a 512 x 1024 ERP at the equator
+  int spp = 16, max_bounces = 4;
+  // Weather presets, cycled over the sequences of a map (FlowScape: 5 sunny, cloud, fog, rain).
+  std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
+                                    "sunny", "cloud", "fog",   "rain"};
+  int vehicles = 100, pedestrians = 60;
+  std::uint64_t seed = 0;
+  bool cube = true;           // also write the six faces (the ERP colour is stitched from them)
+  int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
+};
+void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
+nlohmann::json to_json(const ReleaseConfig& config);
+// `base` with the values the JSON gives; unknown keys are an error (a typo would go unnoticed).
+ReleaseConfig release_config_from_json(const nlohmann::json& json, ReleaseConfig base = {});
+
+// --demo: a small release of the built-in city (1 map, 2 sequences of 4 frames, 128 x 256, 8 spp,
+// sunny and rain) in demo/.
+nlohmann::json demo_config();
+inline constexpr const char* kDemoOut = "demo";
+
+// Where a config comes from, weakest first: the defaults (the paper's FlowScape), the demo's,
+// a config file, the options given on the command line (as config keys, e.g. {"spp": 4}).
+struct ConfigSources {
+  bool demo = false;
+  std::filesystem::path file;  // empty: none
+  nlohmann::json command_line = nlohmann::json::object();
+};
+// Errors name the config file where it is the file's value that is wrong.
+ReleaseConfig resolve_config(const ConfigSources& sources);
+
+// "K/N" -> config.shard = K, config.shards = N; throws std::invalid_argument for other text.
+void parse_shard(const std::string& text, ReleaseConfig& config);
+
+struct SequencePlan {
+  std::string name;        // map<MM>_seq<SS>
+  int map, index, number;  // number: position in the whole release
+  std::string weather;
+  std::uint64_t seed;
+};
+std::vector<SequencePlan> plan_sequences(const ReleaseConfig& config);  // every shard's
+bool in_shard(const SequencePlan& plan, const ReleaseConfig& config);
+std::vector<SequencePlan> shard_plans(const ReleaseConfig& config);  // this shard's
+
+}  // namespace flowscape

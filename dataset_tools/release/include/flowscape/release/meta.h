@@ -1,0 +1,38 @@
+#pragma once
+// meta.json, one per sequence (design.md): what the sequence is (map, weather, seed), its cameras
+// and the rig pose of every frame. Read and written here only.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "flowscape/core/types.h"
+
+namespace flowscape {
+
+struct SequenceMeta {
+  std::string scene;  // map<MM>_seq<SS>
+  int map = 0, sequence = 0;
+  std::string map_name;
+  std::uint64_t seed = 0;
+  nlohmann::json weather;  // weather/'s record; its "preset" names the base preset
+  int frames = 0;
+  double fps = kFrameRate;
+  int erp_height = 0;        // width 2 x height; ERP flow is 360-degree
+  double camera_height = 0;  // of the rig above the ego vehicle's origin
+  std::vector<Pose> poses;   // per frame: rig (x forward, y left, z up) -> world
+  nlohmann::json city;       // scenes/' scene record (null when there is none)
+  int face_size = 0;         // cube faces (focal face_size / 2); 0 = no faces
+
+  std::string weather_preset() const;
+};
+
+nlohmann::json to_json(const SequenceMeta& meta);
+SequenceMeta meta_from_json(const nlohmann::json& json);  // throws std::invalid_argument
+
+// <sequence dir>/meta.json; errors are FileErrors naming the file.
+SequenceMeta read_meta(const std::filesystem::path& sequence_dir);
+void write_meta(const std::filesystem::path& sequence_dir, const SequenceMeta& meta);
+
+}  // namespace flowscape

@@ -1,0 +1,16 @@
+#pragma once
+// Preview tiles of a sequence of a release, read back from its files.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "flowscape/core/image.h"
+
+namespace flowscape {
+
+// Colour | flow (PanoFlow wheel) | semantics of one ERP frame, each at most `width` wide (the last
+// frame has no flow: black).
+std::vector<Image<std::uint8_t>> frame_preview_row(const std::filesystem::path& sequence_dir,
+                                                   int frame, int width);
+
+}  // namespace flowscape

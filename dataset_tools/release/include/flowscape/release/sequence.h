@@ -1,0 +1,44 @@
+#pragma once
+// One sequence as a release renders it: a city map with its traffic, the weather preset varied by
+// the sequence's seed, and the frame pairs at the release's frame rate. Built here once, for the
+// release writer and city_preview alike.
+#include <cstdint>
+#include <string>
+
+#include "flowscape/release/config.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/renderer/renderer.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/weather/weather.h"
+
+namespace flowscape {
+
+struct SequenceSpec {
+  int map = 0;
+  std::string weather = "sunny";  // a preset name
+  std::uint64_t seed = 0;         // the city, traffic, weather variant and colour noise
+  int vehicles = 100, pedestrians = 60;
+  int ego_start = 0;  // index into City::start_points
+  int frames = 100;
+};
+// The spec of a planned sequence of a release (its ego start follows from its seed).
+SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);
+
+struct Sequence {
+  SequenceSpec spec;
+  City city;
+  Weather weather;  // randomized(preset, seed): what the sequence's meta.json records
+
+  static double time(int frame) { return frame / kFrameRate; }
+  FramePair frame_pair(int frame) const;      // frame -> frame + 1
+  std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
+};
+// The city is built and the weather applied (sky, fog, wet materials, rain streaks, puddles).
+// A Renderer keeps a reference to sequence.city.scene: do not move the Sequence while one lives.
+Sequence make_sequence(const SequenceSpec& spec);
+
+// meta.json of a planned sequence of a release.
+SequenceMeta sequence_meta(const Sequence& sequence, const SequencePlan& plan,
+                           const ReleaseConfig& config);
+
+}  // namespace flowscape

@@ -1,0 +1,139 @@
+#include "flowscape/release/config.h"
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "flowscape/core/files.h"
+#include "flowscape/core/random.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/weather/weather.h"
+
+namespace flowscape {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("release config: " + what);
+}
+
+// The JSON keys of a ReleaseConfig and the members they hold, written and read from this one list.
+template <class Config, class Visit>
+void for_each_field(Config& c, Visit&& visit) {
+  visit("maps", c.maps), visit("sequences_per_map", c.sequences_per_map);
+  visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
+  visit("spp", c.spp), visit("max_bounces", c.max_bounces), visit("weathers", c.weathers);
+  visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
+  visit("cube", c.cube);
+}
+
+nlohmann::json read_json_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path, "cannot open the config file");
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, std::string("not JSON: ") + e.what());
+  }
+}
+
+}  // namespace
+
+void validate(const ReleaseConfig& c) {
+  require(c.maps >= 1 && c.maps <= kMapCount, "maps must be in 1.." + std::to_string(kMapCount));
+  require(c.sequences_per_map >= 1 && c.sequences_per_map <= 99,
+          "sequences_per_map must be in 1..99");
+  require(c.frames >= 2 && c.frames <= 999999, "frames must be in 2..999999");
+  require(c.height >= 8 && c.height <= 8192, "resolution (ERP height) must be in 8..8192");
+  require(c.face_size >= 4 && c.face_size <= 8192, "face_size must be in 4..8192");
+  require(c.spp >= 1 && c.spp <= 65536, "spp must be in 1..65536");
+  require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
+  require(!c.weathers.empty(), "weathers must not be empty");
+  for (const std::string& w : c.weathers) weather_preset(w);
+  require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
+          "vehicles + pedestrians must be in 0..200");
+  require(c.shards >= 1 && c.shard >= 0 && c.shard < c.shards, "shard K/N needs 0 <= K < N (got " +
+                                                                   std::to_string(c.shard) + "/" +
+                                                                   std::to_string(c.shards) + ")");
+}
+
+nlohmann::json to_json(const ReleaseConfig& c) {
+  nlohmann::json j = nlohmann::json::object();
+  for_each_field(c, [&](const char* key, const auto& value) { j[key] = value; });
+  return j;
+}
+
+ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c) {
+  if (!j.is_object()) throw std::invalid_argument("release config: expected a JSON object");
+  nlohmann::json merged = to_json(c);
+  for (const auto& [key, value] : j.items()) {
+    if (!merged.contains(key))
+      throw std::invalid_argument("release config: unknown key \"" + key + "\"");
+    merged[key] = value;
+  }
+  try {
+    for_each_field(c, [&](const char* key, auto& field) {
+      field = merged.at(key).get<std::decay_t<decltype(field)>>();
+    });
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("release config: ") + e.what());
+  }
+  validate(c);
+  return c;
+}
+
+nlohmann::json demo_config() {
+  return {{"maps", 1},
+          {"sequences_per_map", 2},
+          {"frames", 4},
+          {"resolution", 128},
+          {"face_size", 64},
+          {"spp", 8},
+          {"weathers", {"sunny", "rain"}}};
+}
+
+ReleaseConfig resolve_config(const ConfigSources& sources) {
+  ReleaseConfig config = sources.demo ? release_config_from_json(demo_config()) : ReleaseConfig{};
+  if (!sources.file.empty()) {
+    try {
+      config = release_config_from_json(read_json_file(sources.file), config);
+    } catch (const std::invalid_argument& e) {
+      throw FileError(sources.file, e.what());
+    }
+  }
+  if (sources.command_line.is_null()) return config;
+  return release_config_from_json(sources.command_line, config);
+}
+
+void parse_shard(const std::string& text, ReleaseConfig& config) {
+  int k = -1, n = -1;
+  char slash = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &k, &slash, &n) != 3 || slash != '/')
+    throw std::invalid_argument("--shard wants K/N, e.g. 0/4 (got \"" + text + "\")");
+  config.shard = k, config.shards = n;
+  validate(config);
+}
+
+std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
+  std::vector<SequencePlan> plans;
+  for (int m = 0; m < c.maps; ++m)
+    for (int s = 0; s < c.sequences_per_map; ++s) {
+      const int number = int(plans.size());
+      plans.push_back({sequence_name(m, s), m, s, number, c.weathers[s % c.weathers.size()],
+                       derived_seed(c.seed, m, s)});
+    }
+  return plans;
+}
+
+bool in_shard(const SequencePlan& plan, const ReleaseConfig& c) {
+  return plan.number % c.shards == c.shard;
+}
+
+std::vector<SequencePlan> shard_plans(const ReleaseConfig& config) {
+  std::vector<SequencePlan> mine;
+  for (const SequencePlan& plan : plan_sequences(config))
+    if (in_shard(plan, config)) mine.push_back(plan);
+  return mine;
+}
+
+}  // namespace flowscape

@@ -1,0 +1,119 @@
+#include "flowscape/release/dataset_card.h"
+
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "flowscape/core/files.h"
+#include "flowscape/formats/contact_sheet.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/semantic_viz.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/release/manifest.h"
+#include "flowscape/release/preview.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/scenes/model_io.h"
+
+namespace flowscape {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kCardFile = "README.md";
+constexpr const char* kExamplesDir = "card";
+
+void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
+  std::map<std::string, int> per_weather;
+  std::map<int, int> per_map;
+  const std::vector<SequencePlan> plans = plan_sequences(c);
+  for (const SequencePlan& p : plans) ++per_weather[p.weather], ++per_map[p.map];
+  md << "## Counts\n\n| map | sequences | frames | flow pairs |\n| --- | --- | --- | --- |\n";
+  for (const auto& [map, n] : per_map)
+    md << "| " << map << " " << map_name(map) << " | " << n << " | " << n * c.frames << " | "
+       << n * (c.frames - 1) << " |\n";
+  md << "| all | " << plans.size() << " | " << plans.size() * c.frames << " | "
+     << plans.size() * (c.frames - 1)
+     << " |\n\n| weather | sequences | share |\n| --- | --- | --- |\n";
+  for (const auto& [weather, n] : per_weather)
+    md << "| " << weather << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
+}
+
+void sizes_section(std::ostringstream& md, const ReleaseConfig& c) {
+  md << "\n## Sizes\n\n- ERP: " << c.height << " x " << 2 * c.height << " (H x W), " << c.frames
+     << " frames at " << kFrameRate << " Hz\n";
+  if (c.cube)
+    md << "- cube: six 90-degree faces (front right back left up down), " << c.face_size << " x "
+       << c.face_size << ", focal " << c.face_size / 2.0
+       << " px; the ERP colour is stitched from them\n";
+  md << "- colour path traced with " << c.spp << " samples per pixel\n";
+  for (const OutputKind& kind : kOutputKinds)
+    md << "- " << kind.name << ": " << kind.description
+       << (kind.pairs_only ? " (every frame but the last)" : "") << "\n";
+}
+
+void classes_section(std::ostringstream& md) {
+  md << "\n## Classes (CARLA 0.9.10-0.9.13)\n\n| id | class | colour |\n| --- | --- | --- |\n";
+  for (int id = 0; id <= 22; ++id) {
+    const auto rgb = semantic_color(std::uint8_t(id));
+    md << "| " << id << " | " << class_name(SemanticClass(id)) << " | " << int(rgb[0]) << ","
+       << int(rgb[1]) << "," << int(rgb[2]) << " |\n";
+  }
+}
+
+void layout_section(std::ostringstream& md) {
+  std::string erp, cube;
+  for (const OutputKind& kind : kOutputKinds) {
+    if (kind.erp) erp.append(erp.empty() ? "" : ",").append(kind.folder);
+    if (kind.cube) cube.append(cube.empty() ? "" : ",").append(kind.folder);
+  }
+  const fs::path sequence = sequence_dir("", "<map>_<seq>");
+  md << "\n## Layout\n\n```\n"
+     << (sequence / kMetaFile).generic_string() << "      map, weather, seed, poses, actors\n"
+     << (sequence / view_dir(std::nullopt)).generic_string() << "/{" << erp << "}/<frame>\n"
+     << (sequence / kCubeDir).generic_string() << "/<face>/{" << cube << "}/<frame>\n"
+     << "splits/, panoflow/                    written by flowscape_split\n```\n";
+}
+
+std::string card_text(const ReleaseConfig& c, const std::vector<std::string>& examples) {
+  std::ostringstream md;
+  md << "# FlowScape release\n\nSynthetic panoramic optical flow in procedural city maps, made by `"
+     << kGeneratorVersion << "` (the FlowScape toolkit), after the FlowScape dataset of the "
+     << "PanoFlow paper. Every file is listed with its sha256 in `" << kManifestFile << "`.\n\n";
+  counts_section(md, c);
+  sizes_section(md, c);
+  classes_section(md);
+  layout_section(md);
+  md << "\n## Examples\n\n";
+  for (const std::string& weather : examples)
+    md << "![" << weather << "](" << kExamplesDir << "/" << weather << ".png)\n\n";
+  md << "## Reproduce\n\n```\ngen_flowscape --config config.json --out <dir>\n```\nwith "
+        "config.json =\n"
+     << "```json\n"
+     << to_json(c).dump(1) << "\n```\n\n## Licence\n\nThe generated data: CC BY 4.0.\n";
+  return md.str();
+}
+
+}  // namespace
+
+void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
+  std::vector<std::string> examples;
+  std::set<std::string> seen;
+  for (const SequencePlan& plan : plan_sequences(config)) {
+    if (!seen.insert(plan.weather).second) continue;
+    write_image(out / kExamplesDir / (plan.weather + ".png"),
+                contact_sheet({frame_preview_row(sequence_dir(out, plan.name), 0, 512)}));
+    examples.push_back(plan.weather);
+  }
+  write_text(out / kCardFile, card_text(config, examples));
+}
+
+std::vector<fs::path> dataset_card_files(const fs::path& out) {
+  std::vector<fs::path> files;
+  if (fs::exists(out / kCardFile)) files.push_back(kCardFile);
+  if (fs::is_directory(out / kExamplesDir))
+    for (const auto& entry : fs::recursive_directory_iterator(out / kExamplesDir))
+      if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), out));
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace flowscape

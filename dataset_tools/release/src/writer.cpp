@@ -1,0 +1,138 @@
+#include "flowscape/release/writer.h"
+
+#include <map>
+#include <stdexcept>
+#include <string_view>
+
+#include "flowscape/core/files.h"
+#include "flowscape/core/progress.h"
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/srgb.h"
+#include "flowscape/release/dataset_card.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/release/manifest.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/stitcher/stitch.h"
+
+namespace flowscape {
+namespace fs = std::filesystem;
+namespace {
+
+using ViewImages = std::map<std::string_view, AnyImage>;
+
+// The images of one view of a frame, by output kind (kOutputKinds), each in its file's pixel type.
+// A new output kind adds its image here.
+ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color) {
+  ViewImages images;
+  images.emplace("color", std::move(color));
+  images.emplace("flow", std::move(truth.flow));
+  images.emplace("semantic", std::move(truth.semantic));
+  images.emplace("instance", std::move(truth.instance));
+  images.emplace("depth", std::move(truth.depth));
+  images.emplace("valid", std::move(truth.valid));
+  return images;
+}
+
+template <class T>
+constexpr PixelType pixel_type() {
+  if constexpr (std::is_same_v<T, std::uint8_t>) return PixelType::UInt8;
+  if constexpr (std::is_same_v<T, std::uint16_t>) return PixelType::UInt16;
+  return PixelType::Float32;
+}
+
+template <class T>
+void write_output(const fs::path& path, const OutputKind& kind, ImageView<const T> image) {
+  if (pixel_type<T>() != kind.pixel || image.channels != kind.channels)
+    throw std::logic_error(path.string() + ": the image does not match its output kind's row");
+  if constexpr (std::is_same_v<T, float>)
+    if (kind.is_flow()) return write_flo(path, image);
+  write_image(path, image);
+}
+
+// Writes the kinds this view has at `frame`; a cube view's images are the six faces stacked.
+void write_view(const fs::path& dir, bool cube, int frame, int frames, const ViewImages& images) {
+  for (const OutputKind& kind : kOutputKinds) {
+    if (!(cube ? kind.cube : kind.erp) || !has_frame(kind, frame, frames)) continue;
+    std::visit(
+        [&](const auto& image) {
+          if (!cube)
+            return write_output(dir / frame_file(kind, std::nullopt, frame), kind, image.view());
+          for (Face face : kFaces)
+            write_output(dir / frame_file(kind, face, frame), kind, face_view(image.view(), face));
+        },
+        images.at(kind.name));
+  }
+}
+
+// The ERP colour is stitched from the cube faces' colour when there are faces, else rendered
+// directly; the ERP ground truth is always ray cast directly (exact, and cheap next to colour).
+void write_frame(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
+                 const CubeToErp* map, const fs::path& dir, int frame) {
+  const FramePair pair = sequence.frame_pair(frame);
+  const RenderOptions options{config.spp, config.max_bounces, sequence.color_seed(frame)};
+  const Projection erp = Projection::equirectangular(config.height);
+  Image<float> erp_color;
+  if (map) {
+    CubeFrame cube = render_cube(renderer, config.face_size, pair, &options);
+    erp_color = resample_bilinear(map->sampling, cube.color);
+    write_view(dir, true, frame, config.frames,
+               view_images(std::move(cube.truth), linear_to_srgb8(cube.color.view())));
+  } else {
+    erp_color = renderer.color(erp, pair, options);
+  }
+  write_view(dir, false, frame, config.frames,
+             view_images(renderer.ground_truth(erp, pair), linear_to_srgb8(erp_color.view())));
+}
+
+bool all_exist(const fs::path& dir, const std::vector<fs::path>& files) {
+  return std::all_of(files.begin(), files.end(),
+                     [&](const fs::path& f) { return fs::exists(dir / f); });
+}
+
+}  // namespace
+
+void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const fs::path& out,
+                    const SequenceProgress& progress) {
+  const fs::path dir = sequence_dir(out, plan.name);
+  fs::create_directories(dir);
+  remove_temporary_files(dir);
+  std::vector<int> frames_to_render;
+  for (int f = 0; f < config.frames; ++f) {
+    if (all_exist(dir, frame_files(f, config.frames, config.cube)))
+      progress.frame_skipped();
+    else
+      frames_to_render.push_back(f);
+  }
+  if (frames_to_render.empty() && fs::exists(dir / kMetaFile)) return;
+  const Sequence sequence = make_sequence(sequence_spec(config, plan));
+  if (!fs::exists(dir / kMetaFile)) write_meta(dir, sequence_meta(sequence, plan, config));
+  Renderer renderer(sequence.city.scene);
+  const CubeToErp map =
+      config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
+  for (int f : frames_to_render) {
+    write_frame(config, sequence, renderer, config.cube ? &map : nullptr, dir, f);
+    progress.frame_done();
+  }
+}
+
+ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out) {
+  const std::vector<SequencePlan> mine = shard_plans(config);
+  Progress progress("gen_flowscape", mine.size() * std::size_t(config.frames), "frames");
+  for (const SequencePlan& plan : mine)
+    write_sequence(config, plan, out, {[&] { progress.advance(); }, [&] { progress.skip(); }});
+  progress.finish();
+  const nlohmann::json files = file_hashes(out, mine);
+  ReleaseWritten written{out / kManifestFile, mine.size(), mine.size() * std::size_t(config.frames),
+                         files.size()};
+  if (config.shards > 1) {
+    write_shard_manifest(out, config, files);
+    written.manifest = shard_manifest_path(out, config);
+    return written;
+  }
+  write_dataset_card(out, config);
+  write_manifest(out, config, files);
+  return written;
+}
+
+}  // namespace flowscape

@@ -1,0 +1,46 @@
+"""Where the files of a FlowScape release are: read from the "layout" that gen_flowscape writes
+into manifest.json (the C++ table of output kinds, dataset_tools/release/layout.h), so the plugin
+spells no path of its own."""
+import json
+import os
+
+
+class ReleaseLayout:
+    """The layout of the release at `root`; raises ValueError naming the file when it has none."""
+
+    def __init__(self, root):
+        self.root = str(root)
+        manifest = os.path.join(self.root, "manifest.json")
+        if not os.path.isfile(manifest):
+            raise ValueError(f"{manifest}: missing (not a finished FlowScape release)")
+        try:
+            with open(manifest) as f:
+                self.layout = json.load(f)["layout"]
+        except (ValueError, KeyError) as error:
+            raise ValueError(f"{manifest}: no layout ({error}); rerun the gen_flowscape command "
+                             "that made the release to rewrite its manifest") from None
+        self.kinds = {kind["name"]: kind for kind in self.layout["kinds"]}
+
+    def sequence_dir(self, sequence):
+        return os.path.join(self.root, self.layout["sequence_dir"].format(sequence=sequence))
+
+    def frame_file(self, sequence, kind, frame, face=None):
+        """The file of output kind `kind` ('color', 'flow', ...) of a frame, ERP or one cube face."""
+        row = self.kinds[kind]
+        views = self.layout["views"]
+        view = views["erp"] if face is None else views["cube"].format(face=face)
+        name = self.layout["frame_file"].format(view=view, folder=row["folder"], frame=int(frame),
+                                                extension=row["extension"])
+        return os.path.join(self.sequence_dir(sequence), name)
+
+    def split_file(self, split):
+        return os.path.join(self.root, self.layout["split_file"].format(split=split))
+
+    def meta(self, sequence):
+        """The sequence's meta.json as a dict."""
+        path = os.path.join(self.sequence_dir(sequence), self.layout["meta"])
+        try:
+            with open(path) as f:
+                return json.load(f)
+        except (OSError, ValueError) as error:
+            raise ValueError(f"{path}: {error}") from None

@@ -1,0 +1,43 @@
+#pragma once
+// How a camera maps pixels to rays in the rig frame (x forward, y left, z up) and back: a pinhole
+// (a cube face or any field of view) or a full equirectangular panorama.
+#include <optional>
+
+#include "flowscape/stitcher/geometry.h"
+
+namespace flowscape {
+
+struct Projection {
+  enum class Kind { Pinhole, Equirectangular };
+  Kind kind = Kind::Pinhole;
+  int width = 0, height = 0;
+  Mat3 rotation = Mat3::Identity();  // pinhole: face camera (x right, y down, z forward) -> rig
+  double focal = 0;                  // pinhole, pixels; principal point at the image centre
+
+  static Projection cube_face(Face face, int face_size);
+  // Horizontal field of view in degrees, looking along the rig's x axis.
+  static Projection pinhole(int width, int height, double fov_x_degrees);
+  static Projection equirectangular(int height);
+
+  // Ray through a continuous pixel position (pixel centres at +0.5); not normalised.
+  Vec3 ray(Vec2 pixel) const;
+  // Continuous pixel position of a rig-frame direction; nullopt behind a pinhole.
+  std::optional<Vec2> project(const Vec3& direction) const;
+};
+
+// Rays through many points of one pixel (the samples of a path tracer). The ERP form takes the sin
+// and cos of the pixel centre's angles once and adds each offset (at most half a pixel) by the
+// angle-sum formulas with short series, exact to double precision (for ERPs at least 64 wide).
+class PixelRays {
+ public:
+  PixelRays(const Projection& projection, int x, int y);
+  Vec3 operator()(Vec2 offset) const;  // offset in [0, 1)^2 from the pixel's corner; not normalised
+
+ private:
+  const Projection& projection_;
+  Vec2 corner_;
+  bool incremental_;    // ERP at least 64 pixels wide
+  SinCos phi_, theta_;  // the pixel centre's angles
+};
+
+}  // namespace flowscape

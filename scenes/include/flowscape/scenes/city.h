@@ -1,0 +1,79 @@
+#pragma once
+// Procedural city maps in the manner of CARLA's towns: a road grid with lanes, sidewalks,
+// crossings, buildings, vegetation and street furniture, driven by vehicles that follow lanes, keep
+// their distance and stop at junctions, and walked by pedestrians on the sidewalks. Everything
+// follows from (map, seed, counts): the same config gives the same scene.
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "flowscape/scenes/scene.h"
+
+namespace flowscape {
+
+constexpr int kMapCount = 8;
+// downtown, suburb, highway, rural, roundabout, waterfront, industrial, hilltown
+std::string map_name(int map);
+
+enum class ActorKind : std::uint8_t { Car, Truck, Bus, Bike, Pedestrian };
+std::string kind_name(ActorKind kind);
+ActorKind kind_from_name(const std::string& name);  // throws std::invalid_argument
+
+struct CityConfig {
+  int map = 0;  // 0 .. kMapCount - 1
+  std::uint64_t seed = 0;
+  int vehicles = 60, pedestrians = 60;  // at most 200 together (the ego vehicle not counted)
+  int ego_start = 0;                    // index into City::start_points
+  double duration = 4.0;                // seconds of traffic to simulate (poses hold after it)
+  // User models replacing the built-in ones, by kind name ("car", "pedestrian", ...): glTF
+  // (.gltf/.glb) through tinygltf, anything else through assimp.
+  std::map<std::string, std::string> models;
+};
+void validate(const CityConfig& config);  // throws std::invalid_argument naming the bad value
+
+// A place on a lane where the ego vehicle (or an actor) can start.
+struct StartPoint {
+  int lane;
+  double s;  // metres along the lane
+  Pose pose;
+};
+
+struct ActorRecord {
+  std::uint16_t instance;
+  ActorKind kind;
+  int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on
+  double s, speed;
+};
+
+// Ground areas of the layout, for placing and checking things.
+enum class Area : std::uint8_t { Road, Junction, SideWalk, Block, Water, Outside };
+
+struct City {
+  CityConfig config;
+  Scene scene;
+  std::vector<StartPoint> start_points;  // 100 .. 120 per map
+  std::vector<ActorRecord> actors;       // in scene.actors order
+  PoseTrack ego;                         // the ego vehicle (x forward, z up, on the road)
+  Eigen::Vector2d ego_size{4.5, 1.9};    // its length and width (it is not drawn)
+  double camera_height = 1.7;            // the rig sits this high above the ego's origin
+  // Footprints (4 corners, counter-clockwise) of the buildings and other solid blocks.
+  std::vector<std::array<Eigen::Vector2d, 4>> solids;
+  std::function<Area(const Eigen::Vector2d&)> area_at;
+  std::function<double(const Eigen::Vector2d&)> ground_height;
+
+  Pose rig(double t) const;     // the camera rig: ego pose raised by camera_height
+  PoseTrack rig_track() const;  // the same, as a track that does not refer to this City
+};
+
+City make_city(const CityConfig& config);
+
+// The scene record of a sequence: the config that makes it and what it made (actor kinds and spawn
+// points, the ego's start), so a scene can be reproduced and checked.
+nlohmann::json to_json(const City& city);
+CityConfig config_from_json(const nlohmann::json& record);  // throws std::invalid_argument
+// Rebuilds the city of a record and checks that it spawns what the record lists.
+City city_from_record(const nlohmann::json& record);
+
+}  // namespace flowscape

@@ -1,0 +1,31 @@
+#pragma once
+// Models in and out of scenes: user models for actors (glTF through tinygltf, OBJ/FBX/... through
+// assimp) and whole maps exported as glTF 2.0 with the semantic class of every node in its extras.
+// Errors throw std::runtime_error("<path>: <problem>").
+#include <string>
+#include <vector>
+
+#include "flowscape/scenes/scene.h"
+
+namespace flowscape {
+
+// One mesh of class `cls` and material `material`, turned from the file's y-up, z-forward frame
+// into ours (x forward, y left, z up), scaled to `length` metres along x, centred on the origin in
+// x and y and standing on z = 0.
+Mesh load_model(const std::string& path, SemanticClass cls, double length,
+                std::uint16_t material = 0);
+
+// The world and every actor posed at time t, one glTF node per (instance, class) with extras
+// {"class_id": id, "class": name, "instance": id}; y-up as glTF wants it.
+void export_gltf(const Scene& scene, double t, const std::string& path);
+
+struct ExportedMesh {
+  std::uint16_t instance;
+  Mesh mesh;  // back in our frame, one class per triangle from the node extras
+};
+// Reads a file written by export_gltf, nodes merged per instance in file order.
+std::vector<ExportedMesh> import_gltf(const std::string& path);
+
+std::string class_name(SemanticClass cls);
+
+}  // namespace flowscape

@@ -1,0 +1,19 @@
+#pragma once
+// Small built-in scenes with motion simple enough to derive ground truth by hand, for tests.
+#include "flowscape/scenes/scene.h"
+#include "flowscape/scenes/shapes.h"
+
+namespace flowscape {
+
+// A closed room around the origin, half-size `half` metres: floor Road, ceiling Other, walls
+// Building. A rig inside sees no sky.
+Scene box_room(float half = 10);
+
+// One square plane x = distance facing the origin, side `side`, class Wall; sky elsewhere.
+Scene textured_plane(double distance = 10, double side = 400);
+
+// box_room plus a 2 m box (instance 7, Vehicles) centred at `centre` at t = 0 and moving with
+// `velocity` (m/s).
+Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity);
+
+}  // namespace flowscape

@@ -1,0 +1,116 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/stitcher/geometry.h"
+#include "temp_dir.h"
+
+using namespace flowscape;
+namespace fsys = std::filesystem;
+
+namespace {
+
+constexpr int kWidth = 37, kHeight = 23;  // the field tests/python/flow_files.py writes
+
+float reference_u(int x, int y) { return (x - 2.f * y) / 4; }
+float reference_v(int x, int y) { return (3.f * x + y) / 8 - 5; }
+bool reference_valid(int x, int y) { return (x + y) % 3 != 0; }
+
+int run_python(const std::string& mode, const fsys::path& folder) {
+  const std::string command = std::string(FLOWSCAPE_PYTHON) + " " + FLOWSCAPE_SOURCE_DIR +
+                              "/tests/python/flow_files.py " + mode + " " + folder.string();
+  return std::system(command.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("flow files written by independent numpy code read back identically") {
+  TempDir dir;
+  REQUIRE(run_python("write", dir.path) == 0);
+
+  const Flow flo = read_flo(dir.path / "numpy.flo");
+  REQUIRE(flo.uv.width == kWidth);
+  REQUIRE(flo.uv.height == kHeight);
+  CHECK(flo.uv.pixel(0, 0)[0] == 1e10f);
+  CHECK(*flo.valid.pixel(0, 0) == 0);
+  int differences = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (x == 0 && y == 0) continue;
+      differences += flo.uv.pixel(x, y)[0] != reference_u(x, y) ||
+                     flo.uv.pixel(x, y)[1] != reference_v(x, y) || *flo.valid.pixel(x, y) != 1;
+    }
+  CHECK(differences == 0);
+
+  const Flow kitti = read_kitti_png(dir.path / "numpy_kitti.png");
+  REQUIRE(kitti.uv.width == kWidth);
+  differences = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const bool valid = reference_valid(x, y);
+      differences += *kitti.valid.pixel(x, y) != valid;
+      if (valid)
+        differences += kitti.uv.pixel(x, y)[0] != reference_u(x, y) ||
+                       kitti.uv.pixel(x, y)[1] != reference_v(x, y);
+    }
+  CHECK(differences == 0);
+}
+
+TEST_CASE("flow files we write are read identically by the independent numpy reader") {
+  TempDir dir;
+  Image<float> uv(kWidth, kHeight, 2);
+  Image<std::uint8_t> valid(kWidth, kHeight, 1);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      uv.pixel(x, y)[0] = reference_u(x, y);
+      uv.pixel(x, y)[1] = reference_v(x, y);
+      *valid.pixel(x, y) = reference_valid(x, y);
+    }
+  write_flow(dir.path / "ours.flo", uv.view());
+  write_flow(dir.path / "ours_kitti.png", uv.view(), valid.view());
+  CHECK(run_python("check", dir.path) == 0);
+
+  write_flow(dir.path / "ours.exr", uv.view());
+  const Flow exr = read_flow(dir.path / "ours.exr");
+  CHECK(exr.uv.data == uv.data);
+  CHECK(fsys::directory_iterator(dir.path) != fsys::directory_iterator());
+  for (const auto& entry : fsys::directory_iterator(dir.path))  // no temporary left behind
+    CHECK_FALSE(entry.path().filename().string().starts_with("."));
+}
+
+TEST_CASE("corrupt, truncated or wrong flow files give an error naming the file and the problem") {
+  TempDir dir;
+  REQUIRE(run_python("write", dir.path) == 0);
+  const auto fails_with = [&](const std::string& name, const std::string& problem) {
+    const std::string path = (dir.path / name).string();
+    CHECK_THROWS_WITH(read_flow(path), Catch::Contains(path) && Catch::Contains(problem));
+  };
+  fails_with("truncated.flo", "truncated .flo data");
+  fails_with("header_only.flo", "truncated .flo header");
+  fails_with("bad_magic.flo", "bad magic");
+  fails_with("bad_size.flo", "bad .flo size");
+  fails_with("trailing.flo", "trailing bytes");
+  fails_with("nan.flo", "NaN");
+  fails_with("truncated_kitti.png", "corrupt or truncated");
+  fails_with("eight_bit_kitti.png", "8-bit");
+  fails_with("not_an_image.png", "cannot read image");
+  fails_with("missing.flo", "file not found");
+  fails_with("missing.png", "file not found");
+  CHECK_THROWS_WITH(read_flow(dir.path / "numpy.txt"), Catch::Contains("unknown flow file type"));
+}
+
+TEST_CASE("flow that a format cannot hold is refused and nothing is written") {
+  TempDir dir;
+  Image<float> uv(4, 3, 2, 1.f);
+  uv.pixel(2, 1)[1] = std::nanf("");
+  CHECK_THROWS_WITH(write_flow(dir.path / "nan.flo", uv.view()),
+                    Catch::Contains("NaN at pixel (2, 1)"));
+  uv.pixel(2, 1)[1] = 600;  // KITTI PNG holds +-512 px
+  CHECK_THROWS_WITH(write_flow(dir.path / "big.png", uv.view()),
+                    Catch::Contains("exceeds the KITTI"));
+  CHECK(fsys::is_empty(dir.path));
+}

@@ -1,0 +1,68 @@
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <map>
+#include <string>
+
+#include "flowscape/core/files.h"
+#include "flowscape/release/config.h"
+#include "flowscape/release/split.h"
+#include "temp_dir.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+TEST_CASE("shards share out the sequences exactly once") {
+  ReleaseConfig config;
+  config.shards = 3;
+  std::vector<int> owners(64, 0);
+  for (config.shard = 0; config.shard < 3; ++config.shard)
+    for (const SequencePlan& plan : plan_sequences(config))
+      if (in_shard(plan, config)) ++owners[plan.number];
+  CHECK(std::all_of(owners.begin(), owners.end(), [](int n) { return n == 1; }));
+}
+
+TEST_CASE("release configs round-trip through JSON and bad values are named") {
+  ReleaseConfig config;
+  config.maps = 3, config.frames = 7, config.weathers = {"rain", "fog"}, config.cube = false;
+  CHECK(to_json(release_config_from_json(to_json(config))) == to_json(config));
+  CHECK_THROWS_WITH(release_config_from_json({{"maps", 9}}),
+                    Catch::Contains("maps must be in 1..8"));
+  CHECK_THROWS_WITH(release_config_from_json({{"frames", 1}}), Catch::Contains("frames"));
+  CHECK_THROWS_WITH(release_config_from_json({{"spp", "many"}}), Catch::Contains("release config"));
+  CHECK_THROWS_WITH(release_config_from_json({{"weathers", {"hail"}}}),
+                    Catch::Contains("unknown weather preset \"hail\""));
+  CHECK_THROWS_WITH(release_config_from_json({{"vehicles", 150}, {"pedestrians", 60}}),
+                    Catch::Contains("vehicles + pedestrians"));
+}
+
+TEST_CASE("config sources: defaults, then --demo, then the config file, then the command line") {
+  TempDir dir;
+  const fs::path file = dir.path / "config.json";
+  write_text(file, R"({"frames": 7, "spp": 3, "weathers": ["fog"]})");
+  CHECK(to_json(resolve_config({})) == to_json(ReleaseConfig{}));
+  const ReleaseConfig demo = resolve_config({true, {}, {}});
+  CHECK((demo.maps == 1 && demo.sequences_per_map == 2 && demo.frames == 4 && demo.height == 128));
+  CHECK(demo.weathers == std::vector<std::string>{"sunny", "rain"});
+  const ReleaseConfig layered = resolve_config({true, file, {{"spp", 5}}});
+  CHECK(layered.maps == 1);    // demo
+  CHECK(layered.frames == 7);  // the file over the demo
+  CHECK(layered.spp == 5);     // the command line over the file
+  CHECK(layered.weathers == std::vector<std::string>{"fog"});
+  CHECK(resolve_config({false, file, {}}).maps == 8);  // the defaults under the file
+  write_text(file, R"({"frams": 3})");
+  CHECK_THROWS_WITH(resolve_config({false, file, {}}),
+                    Catch::Contains("config.json: release config: unknown key \"frams\""));
+  CHECK_THROWS_WITH(resolve_config({false, dir.path / "none.json", {}}),
+                    Catch::Contains("none.json: cannot open the config file"));
+  CHECK_THROWS_WITH(resolve_config({false, {}, {{"maps", 0}}}),
+                    Catch::Contains("maps must be in 1..8"));
+}
+
+TEST_CASE("shards given as K/N are parsed and checked") {
+  ReleaseConfig config;
+  parse_shard("2/5", config);
+  CHECK((config.shard == 2 && config.shards == 5));
+  CHECK(shard_plans(config).size() == 13);  // sequences 2, 7, ..., 62 of 64
+  CHECK_THROWS_WITH(parse_shard("5/5", config), Catch::Contains("shard K/N needs 0 <= K < N"));
+  CHECK_THROWS_WITH(parse_shard("two", config), Catch::Contains("--shard wants K/N"));
+}

@@ -1,0 +1,31 @@
+#include <catch2/catch.hpp>
+#include <map>
+#include <string>
+
+#include "flowscape/release/config.h"
+#include "flowscape/release/split.h"
+
+using namespace flowscape;
+
+TEST_CASE("the default release is the paper's FlowScape and its split is 14 of 64 sequences") {
+  const ReleaseConfig config;
+  const std::vector<SequencePlan> plans = plan_sequences(config);
+  REQUIRE(plans.size() == 64);
+  std::vector<SequenceInfo> sequences;
+  for (const SequencePlan& p : plans) sequences.push_back({p.name, p.weather, config.frames});
+  CHECK(sequences.front().name == "map00_seq00");
+  CHECK(sequences.back().name == "map07_seq07");
+  const Split split = split_sequences(sequences, 0);
+  REQUIRE(split.test.size() == 14);
+  REQUIRE(split.train.size() == 50);
+  std::map<std::string, int> test;
+  for (const SequenceInfo& s : split.test) ++test[s.weather];
+  CHECK(test == std::map<std::string, int>{{"cloud", 2}, {"fog", 2}, {"rain", 2}, {"sunny", 8}});
+  int pairs = 0;
+  for (const SequenceInfo& s : split.test) pairs += s.frames - 1;
+  CHECK(pairs == 14 * 99);  // the paper counts 1,400 test frames
+  for (const SequenceInfo& s : split.test)
+    for (const SequenceInfo& t : split.train) REQUIRE(s.name != t.name);
+  CHECK(split_sequences(sequences, 0).test.front().name == split.test.front().name);
+  CHECK(split_sequences(sequences, 1).test.front().name != split.test.front().name);
+}

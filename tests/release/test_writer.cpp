@@ -1,0 +1,117 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "flowscape/formats/flow_io.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/release/layout.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/release/writer.h"
+#include "independent_math.h"
+#include "temp_dir.h"
+#include "tiny_release.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Counts {
+  int done = 0, skipped = 0;
+};
+
+Counts write(const ReleaseConfig& config, const fs::path& out) {
+  Counts counts;
+  write_sequence(config, plan_sequences(config).front(), out,
+                 {[&] { ++counts.done; }, [&] { ++counts.skipped; }});
+  return counts;
+}
+
+int pixel_type_index(PixelType type) {
+  return type == PixelType::UInt8 ? 0 : type == PixelType::UInt16 ? 1 : 2;
+}
+
+}  // namespace
+
+TEST_CASE("the writer makes every file of the layout, each as its row of the table says") {
+  TempDir dir;
+  const ReleaseConfig config = tiny_release_config();
+  REQUIRE(write(config, dir.path).done == 3);
+  const fs::path seq = sequence_dir(dir.path, "map00_seq00");
+  CHECK(read_meta(seq).frames == 3);
+  int files = 0;
+  for (int f = 0; f < 3; ++f)
+    for (const fs::path& file : frame_files(f, 3, true)) {
+      INFO(file);
+      const bool cube = file.begin()->string() == "cube";
+      const int width = cube ? 8 : 32, height = cube ? 8 : 16;
+      const OutputKind& kind = output_kind(file.parent_path().filename().string());
+      if (kind.is_flow()) {
+        const Flow flow = read_flo(seq / file);
+        CHECK((flow.uv.width == width && flow.uv.height == height));
+      } else {
+        const AnyImage image = read_any_image(seq / file);
+        CHECK(int(image.index()) == pixel_type_index(kind.pixel));
+        std::visit(
+            [&](const auto& i) {
+              CHECK((i.width == width && i.height == height && i.channels == kind.channels));
+            },
+            image);
+      }
+      ++files;
+    }
+  CHECK(files == 7 * (6 + 6 + 4));
+}
+
+// The sky is at infinity: its flow is the rig's rotation only, derived here from the poses that
+// meta.json records with the hand-written ERP formulas.
+TEST_CASE("the ERP flow of the sky is the rotation between the recorded rig poses") {
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(1, 3);
+  config.height = 24, config.cube = false;
+  write(config, dir.path);
+  const fs::path seq = sequence_dir(dir.path, "map00_seq00");
+  const SequenceMeta meta = read_meta(seq);
+  const int W = 48;
+  for (int f = 0; f < 2; ++f) {
+    const Flow flow = read_flo(seq / frame_file(output_kind("flow"), std::nullopt, f));
+    const Image<std::uint8_t> semantic =
+        read_image<std::uint8_t>(seq / frame_file(output_kind("semantic"), std::nullopt, f));
+    const Mat3 turn = meta.poses[f + 1].linear().transpose() * meta.poses[f].linear();
+    int sky = 0;
+    for (int y = 0; y < 24; ++y)
+      for (int x = 0; x < W; ++x) {
+        if (*semantic.pixel(x, y) != 13) continue;
+        const indep::V3 d = indep::erp_direction(x + 0.5, y + 0.5, W);
+        const Vec3 seen = turn * Vec3(d.x, d.y, d.z);
+        const indep::V3 e{seen.x(), seen.y(), seen.z()};
+        double u = (indep::longitude(e) + indep::pi) * W / (2 * indep::pi) - (x + 0.5);
+        u = u > W / 2.0 ? u - W : u <= -W / 2.0 ? u + W : u;
+        const double v = (indep::latitude(e) + indep::pi / 2) * 24 / indep::pi - (y + 0.5);
+        REQUIRE(flow.uv.pixel(x, y)[0] == Approx(u).margin(2e-3));
+        REQUIRE(flow.uv.pixel(x, y)[1] == Approx(v).margin(2e-3));
+        ++sky;
+      }
+    CHECK(sky > 100);
+  }
+}
+
+TEST_CASE("a rerun skips finished frames and redoes a damaged one to the same bytes") {
+  TempDir dir;
+  const ReleaseConfig config = tiny_release_config();
+  write(config, dir.path);
+  const fs::path seq = sequence_dir(dir.path, "map00_seq00");
+  const fs::path lost = seq / frame_file(output_kind("depth"), Face::Up, 1);
+  const fs::path kept = seq / frame_file(output_kind("color"), std::nullopt, 1);
+  const std::string lost_bytes = file_bytes(lost), kept_bytes = file_bytes(kept);
+  const Counts again = write(config, dir.path);
+  CHECK((again.done == 0 && again.skipped == 3));
+  fs::remove(lost);
+  std::ofstream(seq / "erp" / "flow" / ".partial-000001.flo") << "half";  // a killed run's
+  const Counts redo = write(config, dir.path);
+  CHECK((redo.done == 1 && redo.skipped == 2));
+  CHECK(file_bytes(lost) == lost_bytes);
+  CHECK(file_bytes(kept) == kept_bytes);
+  CHECK_FALSE(fs::exists(seq / "erp" / "flow" / ".partial-000001.flo"));
+}

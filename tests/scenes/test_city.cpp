@@ -1,0 +1,345 @@
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "flowscape/renderer/renderer.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/scenes/model_io.h"
+#include "temp_dir.h"
+
+using namespace flowscape;
+using V2 = Eigen::Vector2d;
+
+namespace {
+
+constexpr double kFrame = 1 / kFrameRate;  // one frame
+
+// An oriented rectangle in the ground plane: centre, unit axes and half extents.
+struct Box2 {
+  V2 centre, axis[2];
+  double half[2];
+};
+
+// The footprint of an actor at time t, measured from its own triangles (every part posed).
+Box2 footprint(const Actor& actor, double t) {
+  const Pose pose = actor.pose(t), inverse = pose.inverse();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
+  for (const Part& part : actor.parts) {
+    const Pose to_actor = inverse * part_pose(actor, part, t);
+    for (const Eigen::Vector3f& v : part.mesh.vertices) {
+      const Eigen::Vector3d p = to_actor * v.cast<double>();
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+  }
+  const Eigen::Vector3d centre = pose * ((lo + hi) / 2);
+  const Eigen::Matrix3d r = pose.linear();
+  return {centre.head<2>(),
+          {r.col(0).head<2>().normalized(), r.col(1).head<2>().normalized()},
+          {(hi.x() - lo.x()) / 2, (hi.y() - lo.y()) / 2}};
+}
+
+Box2 ego_footprint(const City& city, double t) {
+  const Pose pose = city.ego(t);
+  return {
+      pose.translation().head<2>(),
+      {pose.linear().col(0).head<2>().normalized(), pose.linear().col(1).head<2>().normalized()},
+      {city.ego_size.x() / 2, city.ego_size.y() / 2}};
+}
+
+std::array<V2, 4> corners(const Box2& b) {
+  const V2 u = b.axis[0] * b.half[0], v = b.axis[1] * b.half[1];
+  return {b.centre - u - v, b.centre + u - v, b.centre + u + v, b.centre - u + v};
+}
+
+// Separating-axis test of two convex quadrilaterals (touching counts as apart).
+bool overlap(const std::array<V2, 4>& a, const std::array<V2, 4>& b) {
+  for (const auto* poly : {&a, &b})
+    for (int k = 0; k < 4; ++k) {
+      const V2 edge = (*poly)[(k + 1) % 4] - (*poly)[k], normal(-edge.y(), edge.x());
+      double a_lo = 1e18, a_hi = -1e18, b_lo = 1e18, b_hi = -1e18;
+      for (const V2& p : a)
+        a_lo = std::min(a_lo, normal.dot(p)), a_hi = std::max(a_hi, normal.dot(p));
+      for (const V2& p : b)
+        b_lo = std::min(b_lo, normal.dot(p)), b_hi = std::max(b_hi, normal.dot(p));
+      if (a_hi <= b_lo || b_hi <= a_lo) return false;
+    }
+  return true;
+}
+
+CityConfig busy(int map) {
+  CityConfig config;
+  config.map = map, config.seed = 7, config.vehicles = 120, config.pedestrians = 80;
+  config.duration = 100 * kFrame, config.ego_start = 11 * map;
+  return config;
+}
+
+}  // namespace
+
+TEST_CASE("the same seed gives the same city and another seed another one") {
+  CityConfig config;
+  config.map = 4, config.seed = 3, config.vehicles = 30, config.pedestrians = 20;
+  const City a = make_city(config), b = make_city(config);
+  CHECK(a.scene.world.vertices == b.scene.world.vertices);
+  CHECK(a.scene.world.triangles == b.scene.world.triangles);
+  CHECK(a.scene.world.classes == b.scene.world.classes);
+  REQUIRE(a.scene.actors.size() == 50);
+  for (double t : {0.0, 1.0, 2.5})
+    for (std::size_t k = 0; k < a.scene.actors.size(); ++k)
+      CHECK(a.scene.actors[k].pose(t).matrix() == b.scene.actors[k].pose(t).matrix());
+  CHECK(a.ego(2.0).matrix() == b.ego(2.0).matrix());
+  config.seed = 4;
+  const City c = make_city(config);
+  CHECK(c.scene.world.vertices != a.scene.world.vertices);
+}
+
+TEST_CASE("every map has 100-120 start points on its roads and classes on every triangle") {
+  const std::set<SemanticClass> everywhere{SemanticClass::Road,     SemanticClass::RoadLine,
+                                           SemanticClass::SideWalk, SemanticClass::Building,
+                                           SemanticClass::Pole,     SemanticClass::Vegetation};
+  std::set<SemanticClass> seen;
+  std::set<std::vector<float>> first_vertices;
+  for (int map = 0; map < kMapCount; ++map) {
+    CityConfig config;
+    config.map = map, config.vehicles = 20, config.pedestrians = 20;
+    const City city = make_city(config);
+    INFO("map " << map_name(map));
+    CHECK(city.start_points.size() >= 100);
+    CHECK(city.start_points.size() <= 120);
+    for (const StartPoint& p : city.start_points)
+      CHECK(city.area_at(p.pose.translation().head<2>()) == Area::Road);
+    const auto check_mesh = [&](const Mesh& mesh) {
+      REQUIRE(mesh.classes.size() == mesh.triangles.size());
+      REQUIRE(mesh.materials.size() == mesh.triangles.size());
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        REQUIRE(int(mesh.classes[t]) <= 22);
+        REQUIRE(mesh.classes[t] != SemanticClass::Unlabeled);
+        REQUIRE(mesh.classes[t] != SemanticClass::Sky);
+        REQUIRE(mesh.materials[t] < city.scene.materials.size());
+        seen.insert(mesh.classes[t]);
+      }
+    };
+    std::set<SemanticClass> classes_here;
+    check_mesh(city.scene.world);
+    for (SemanticClass c : city.scene.world.classes) classes_here.insert(c);
+    for (SemanticClass c : everywhere) CHECK(classes_here.count(c) == 1);
+    for (const Actor& actor : city.scene.actors)
+      for (const Part& part : actor.parts) check_mesh(part.mesh);
+    first_vertices.insert({city.scene.world.vertices[40].x(), city.scene.world.vertices[40].y()});
+  }
+  CHECK(first_vertices.size() == kMapCount);  // eight different maps
+  for (SemanticClass c :
+       {SemanticClass::Vehicles, SemanticClass::Pedestrian, SemanticClass::Fence,
+        SemanticClass::TrafficLight, SemanticClass::TrafficSign, SemanticClass::GuardRail,
+        SemanticClass::Water, SemanticClass::Terrain, SemanticClass::RailTrack,
+        SemanticClass::Bridge, SemanticClass::Wall, SemanticClass::Static, SemanticClass::Ground}) {
+    INFO("class " << class_name(c));
+    CHECK(seen.count(c) == 1);
+  }
+}
+
+TEST_CASE(
+    "over 100 frames no actor meets a building or another actor and all keep to their ground") {
+  for (int map = 0; map < kMapCount; ++map) {
+    const City city = make_city(busy(map));
+    INFO("map " << map_name(map));
+    // the solid footprints cover every building vertex (windows sit 3 cm proud of the walls)
+    for (std::size_t t = 0; t < city.scene.world.triangles.size(); t += 7) {
+      if (city.scene.world.classes[t] != SemanticClass::Building) continue;
+      const V2 p =
+          city.scene.world.vertices[city.scene.world.triangles[t][0]].head<2>().cast<double>();
+      const bool inside = std::any_of(city.solids.begin(), city.solids.end(), [&](auto& f) {
+        return p.x() >= f[0].x() - 0.05 && p.x() <= f[2].x() + 0.05 && p.y() >= f[0].y() - 0.05 &&
+               p.y() <= f[2].y() + 0.05;
+      });
+      REQUIRE(inside);
+    }
+    int moving = 0;
+    for (int frame = 0; frame <= 100; frame += 2) {
+      const double t = frame * kFrame;
+      std::vector<std::array<V2, 4>> boxes{corners(ego_footprint(city, t))};
+      std::vector<bool> walker{false};
+      for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
+        boxes.push_back(corners(footprint(city.scene.actors[a], t)));
+        walker.push_back(city.actors[a].kind == ActorKind::Pedestrian);
+      }
+      for (std::size_t a = 0; a < boxes.size(); ++a) {
+        for (const V2& c : boxes[a]) {
+          const Area area = city.area_at(c);
+          INFO("actor " << a << ", frame " << frame << ", corner " << c.transpose());
+          if (walker[a])
+            REQUIRE(area == Area::SideWalk);
+          else
+            REQUIRE((area == Area::Road || area == Area::Junction));
+        }
+        for (const auto& solid : city.solids) REQUIRE_FALSE(overlap(boxes[a], solid));
+        for (std::size_t b = a + 1; b < boxes.size(); ++b) {
+          INFO("frame " << frame << ", actors " << a << " and " << b);
+          REQUIRE_FALSE(overlap(boxes[a], boxes[b]));
+        }
+      }
+    }
+    for (const Actor& actor : city.scene.actors)
+      moving += (actor.pose(100 * kFrame).translation() - actor.pose(0).translation()).norm() > 1;
+    CHECK(moving > int(city.scene.actors.size()) / 3);
+  }
+}
+
+TEST_CASE("vehicles stop at junctions and go on and pedestrians swing their limbs") {
+  CityConfig config;
+  config.map = 0, config.seed = 1, config.vehicles = 60, config.pedestrians = 10;
+  config.duration = 40;
+  const City city = make_city(config);
+  int stopped_then_moved = 0;
+  for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
+    if (city.actors[a].kind == ActorKind::Pedestrian) continue;
+    const Actor& actor = city.scene.actors[a];
+    bool stopped = false;
+    for (double t = 1; t < 39; t += 0.5) {
+      const double speed =
+          (actor.pose(t + 0.5).translation() - actor.pose(t).translation()).norm() / 0.5;
+      if (speed < 0.05)
+        stopped = true;
+      else if (stopped && speed > 3) {
+        ++stopped_then_moved;
+        break;
+      }
+    }
+  }
+  CHECK(stopped_then_moved > 5);
+  for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
+    if (city.actors[a].kind != ActorKind::Pedestrian) continue;
+    const Actor& walker = city.scene.actors[a];
+    REQUIRE(walker.parts.size() > 1);
+    const Part& leg = walker.parts[1];  // a limb moves relative to the body
+    CHECK((leg.pose(0.2).linear() - leg.pose(0.6).linear()).norm() > 0.01);
+  }
+}
+
+TEST_CASE("user models from assimp's test set replace built-in actors") {
+  const std::string gltf = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  const std::string obj = "/usr/share/assimp/models/OBJ/box.obj";
+  REQUIRE(std::filesystem::exists(gltf));  // Debian's assimp-testmodels (scripts/install_deps.sh)
+  const Mesh box = load_model(gltf, SemanticClass::Vehicles, 4.5);
+  CHECK(box.triangles.size() == 12);
+  Eigen::Vector3f lo = box.vertices[0], hi = lo;
+  for (const auto& v : box.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  CHECK(hi.x() - lo.x() == Approx(4.5));
+  CHECK(lo.z() == Approx(0).margin(1e-6));
+  CHECK((lo.x() + hi.x()) == Approx(0).margin(1e-5));
+  CHECK(load_model(obj, SemanticClass::Pedestrian, 0.5).triangles.size() == 12);
+  CityConfig config;
+  config.map = 1, config.vehicles = 20, config.pedestrians = 5, config.models = {{"car", gltf}};
+  const City city = make_city(config);
+  int replaced = 0;
+  for (std::size_t a = 0; a < city.actors.size(); ++a)
+    if (city.actors[a].kind == ActorKind::Car) {
+      REQUIRE(city.scene.actors[a].parts.size() == 1);
+      CHECK(city.scene.actors[a].parts[0].mesh.triangles.size() == 12);
+      ++replaced;
+    }
+  CHECK(replaced > 0);
+  TempDir dir;
+  const std::string corrupt = (dir.path / "broken.gltf").string();
+  std::ofstream(corrupt) << "{ not json";
+  CHECK_THROWS_WITH(load_model(corrupt, SemanticClass::Vehicles, 4), Catch::Contains(corrupt));
+  CHECK_THROWS_WITH(load_model((dir.path / "none.obj").string(), SemanticClass::Vehicles, 4),
+                    Catch::Contains("none.obj: no such model file"));
+  config.models = {{"plane", gltf}};
+  CHECK_THROWS_WITH(make_city(config), Catch::Contains("unknown actor kind \"plane\""));
+}
+
+TEST_CASE("a map exported as glTF reads back with the same triangles and classes") {
+  CityConfig config;
+  config.map = 6, config.vehicles = 5, config.pedestrians = 5;
+  const City city = make_city(config);
+  TempDir dir;
+  const std::string path = (dir.path / "map.gltf").string();
+  export_gltf(city.scene, 0.5, path);
+  const std::vector<ExportedMesh> meshes = import_gltf(path);
+  REQUIRE(meshes.size() == 1 + city.scene.actors.size());
+  const auto triangle_set = [](const Mesh& mesh,
+                               const std::function<Eigen::Vector3f(int)>& vertex) {
+    std::multiset<std::vector<float>> set;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      std::vector<float> key{float(mesh.classes[t])};
+      for (int c = 0; c < 3; ++c)
+        for (int a = 0; a < 3; ++a) key.push_back(vertex(mesh.triangles[t][c])[a]);
+      set.insert(key);
+    }
+    return set;
+  };
+  const Mesh& world = city.scene.world;
+  CHECK(meshes[0].instance == 0);
+  CHECK(triangle_set(meshes[0].mesh, [&](int v) { return meshes[0].mesh.vertices[v]; }) ==
+        triangle_set(world, [&](int v) { return world.vertices[v]; }));
+  const Actor& actor = city.scene.actors[2];
+  CHECK(meshes[3].instance == actor.instance);
+  std::size_t triangles = 0;
+  for (const Part& part : actor.parts) triangles += part.mesh.triangles.size();
+  CHECK(meshes[3].mesh.triangles.size() == triangles);
+  const Pose body = part_pose(actor, actor.parts[0], 0.5);
+  const Eigen::Vector3f expected =
+      (body * actor.parts[0].mesh.vertices[0].cast<double>()).cast<float>();
+  float nearest = 1e9;
+  for (const auto& v : meshes[3].mesh.vertices) nearest = std::min(nearest, (v - expected).norm());
+  CHECK(nearest < 1e-5f);
+  std::ofstream(dir.path / "bad.gltf")
+      << "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 0}]}";
+  CHECK_THROWS(import_gltf((dir.path / "bad.gltf").string()));
+}
+
+TEST_CASE("a scene record in JSON reproduces the scene and rejects bad values") {
+  CityConfig config;
+  config.map = 5, config.seed = 11, config.vehicles = 25, config.pedestrians = 15;
+  config.ego_start = 42;
+  const City city = make_city(config);
+  const nlohmann::json record = nlohmann::json::parse(to_json(city).dump());
+  CHECK(record["map_name"] == "waterfront");
+  CHECK(record["actors"].size() == 40);
+  const City again = city_from_record(record);
+  for (double t : {0.0, 1.7, 3.9}) {
+    CHECK(again.ego(t).matrix() == city.ego(t).matrix());
+    for (std::size_t a = 0; a < city.scene.actors.size(); ++a)
+      CHECK(again.scene.actors[a].pose(t).matrix() == city.scene.actors[a].pose(t).matrix());
+  }
+  nlohmann::json changed = record;
+  changed["actors"][0]["s"] = 1234.5;
+  CHECK_THROWS_WITH(city_from_record(changed), Catch::Contains("other actors than the record"));
+  const auto bad = [&](const char* key, nlohmann::json value, const char* message) {
+    nlohmann::json r = record;
+    r[key] = value;
+    CHECK_THROWS_WITH(config_from_json(r), Catch::Contains(message));
+  };
+  bad("map", 8, "map 8 is not in 0..7");
+  bad("vehicles", -1, "must not be negative");
+  bad("vehicles", 190, "at most 200");
+  bad("ego_start", 100, "ego start 100");
+  bad("duration", -2.0, "duration");
+  bad("seed", "x", "scene record");
+}
+
+TEST_CASE("a rendered city frame shows its classes and the instances of its actors") {
+  CityConfig config;
+  config.map = 0, config.seed = 2, config.vehicles = 120, config.pedestrians = 60;
+  config.ego_start = 30, config.duration = 1.2;
+  const City city = make_city(config);
+  Renderer renderer(city.scene);
+  const FramePair frames{1.0, 1.0 + kFrame, city.rig(1.0), city.rig(1.0 + kFrame)};
+  const GroundTruth gt = renderer.ground_truth(Projection::equirectangular(96), frames);
+  std::set<int> classes, instances;
+  for (std::size_t i = 0; i < gt.semantic.data.size(); ++i) {
+    classes.insert(gt.semantic.data[i]);
+    const int instance = gt.instance.data[i];
+    if (instance == 0) continue;
+    instances.insert(instance);
+    REQUIRE(instance <= int(city.scene.actors.size()));
+    const ActorKind kind = city.actors[instance - 1].kind;
+    CHECK(gt.semantic.data[i] ==
+          int(kind == ActorKind::Pedestrian ? SemanticClass::Pedestrian : SemanticClass::Vehicles));
+  }
+  for (SemanticClass c : {SemanticClass::Road, SemanticClass::SideWalk, SemanticClass::Building,
+                          SemanticClass::Sky, SemanticClass::RoadLine})
+    CHECK(classes.count(int(c)) == 1);
+  CHECK(instances.size() >= 3);
+}
