@@ -21,8 +21,8 @@ namespace {
 Scene street_fixture() {
   Scene scene;
   Material facade;
-  facade.albedo = {0.7f, 0.6f, 0.5f}, facade.checker_size = 1.5f,
-  facade.checker_albedo = {0.2f, 0.25f, 0.3f};
+  facade.albedo = {0.7f, 0.6f, 0.5f};
+  facade.pattern = checker(1.5, {0.2f / 0.7f, 0.25f / 0.6f, 0.3f / 0.5f});
   Material paint;
   paint.kind = Material::Kind::Glossy, paint.albedo = {0.6f, 0.1f, 0.1f};
   scene.materials = {Material{}, facade, paint};

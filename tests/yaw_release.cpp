@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   const SequencePlan plan = plan_sequences(config).front();
   const fs::path seq = sequence_dir(out, plan.name);
   Scene scene = textured_plane(8, 60);
-  scene.materials[0].checker_size = 0.7f;
+  scene.materials[0].pattern = checker(0.7, Eigen::Vector3f::Constant(1 / 3.0f));
   add_box(scene.world, {-30, -30, -3}, {30, 30, -2}, SemanticClass::Road);
   scene.world.materials.resize(scene.world.triangles.size(), 0);
   Renderer renderer(scene);

@@ -12,7 +12,18 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // count as an occluder (float hit points are good to about 1e-6 of their distance).
 constexpr double kVisibilityMargin = 1e-4;
 
-RTCScene build_bvh(RTCDevice device, const Mesh& mesh) {
+// Embree's filter: a hit on a hole of an alpha mask is no hit.
+void coverage_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* masked = static_cast<const MaskedMesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    if (!masked->coverage->covered(*masked->mesh, triangle, u, v)) args->valid[i] = 0;
+  }
+}
+
+RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked) {
   RTCScene bvh = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
@@ -25,6 +36,11 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh) {
                               3 * sizeof(unsigned), mesh.triangles.size()));
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
     for (int c = 0; c < 3; ++c) indices[3 * t + c] = unsigned(mesh.triangles[t][c]);
+  if (masked) {
+    rtcSetGeometryUserData(geometry, const_cast<MaskedMesh*>(masked));
+    rtcSetGeometryIntersectFilterFunction(geometry, coverage_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, coverage_filter);
+  }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(bvh, geometry);
   rtcReleaseGeometry(geometry);
@@ -32,9 +48,20 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh) {
   return bvh;
 }
 
+void require_per_vertex(std::size_t count, const Mesh& mesh, const char* what,
+                        const std::string& name) {
+  if (count != 0 && count != mesh.vertices.size())
+    throw std::invalid_argument(name + ": " + std::to_string(count) + " " + what + " for " +
+                                std::to_string(mesh.vertices.size()) +
+                                " vertices (give one per vertex or none)");
+}
+
 void require_valid_mesh(const Mesh& mesh, const std::string& name) {
   if (mesh.classes.size() != mesh.triangles.size())
     throw std::invalid_argument(name + ": needs one semantic class per triangle");
+  require_per_vertex(mesh.normals.size(), mesh, "normals", name);
+  require_per_vertex(mesh.uvs.size(), mesh, "uvs", name);
+  require_per_vertex(mesh.tangents.size(), mesh, "tangents", name);
   for (const Eigen::Vector3i& t : mesh.triangles)
     for (int c = 0; c < 3; ++c)
       if (t[c] < 0 || std::size_t(t[c]) >= mesh.vertices.size())
@@ -76,9 +103,15 @@ void require_valid_materials(const Mesh& mesh, std::size_t material_count,
     if (m >= material_count) throw std::invalid_argument(name + ": material index out of range");
 }
 
+bool has_alpha_mask(const Mesh& mesh, const std::vector<Material>& materials) {
+  return std::any_of(mesh.materials.begin(), mesh.materials.end(),
+                     [&](std::uint16_t m) { return materials[m].images.alpha_cutoff >= 0; });
+}
+
 }  // namespace
 
-EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
+EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
+    : scene_(scene), coverage_(coverage) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
   meshes_.push_back({&scene.world});
@@ -86,10 +119,13 @@ EmbreeScene::EmbreeScene(const Scene& scene) : scene_(scene) {
     for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p)
       meshes_.push_back({&scene.actors[a].parts[p].mesh, int(a), int(p), scene.actors[a].instance,
                          scene.actors[a].color_only});
+  masked_.reserve(meshes_.size());
   for (const MeshRef& ref : meshes_) {
     require_valid_mesh(*ref.mesh, mesh_name(ref));
     require_valid_materials(*ref.mesh, scene.materials.size(), mesh_name(ref));
-    bvhs_.push_back(build_bvh(device_, *ref.mesh));
+    const bool masked = coverage && has_alpha_mask(*ref.mesh, scene.materials);
+    if (masked) masked_.push_back({ref.mesh, coverage});
+    bvhs_.push_back(build_bvh(device_, *ref.mesh, masked ? &masked_.back() : nullptr));
   }
   now_ = instances(), next_ = instances();
 }
@@ -134,6 +170,8 @@ void EmbreeScene::pose_instances(RTCScene top, double t, std::vector<Pose>& pose
 void EmbreeScene::set_times(double now, double next) {
   if (posed_ && now == time_now_ && next == time_next_) return;  // the six faces of one frame
   pose_instances(now_, now, poses_now_);
+  inverse_now_.resize(poses_now_.size());
+  for (std::size_t m = 0; m < poses_now_.size(); ++m) inverse_now_[m] = poses_now_[m].inverse();
   pose_instances(next_, next, poses_next_);
   posed_ = true, time_now_ = now, time_next_ = next;
 }
@@ -146,8 +184,13 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(now_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-  return {
-      true, rh.hit.instID[0], rh.hit.primID, rh.ray.tfar, {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z}};
+  return {true,
+          rh.hit.instID[0],
+          rh.hit.primID,
+          rh.ray.tfar,
+          {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
+          rh.hit.u,
+          rh.hit.v};
 }
 
 bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& direction,
@@ -178,7 +221,9 @@ void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
                         hit.instID[0][i],
                         hit.primID[i],
                         packet.ray.tfar[i],
-                        {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]}};
+                        {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]},
+                        hit.u[i],
+                        hit.v[i]};
 }
 
 void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) const {

@@ -36,11 +36,27 @@ struct Hit {
   unsigned mesh = 0, triangle = 0;
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // (v1 - v0) x (v2 - v0) in the mesh's frame
+  float u = 0, v = 0;  // barycentric: the point is (1 - u - v) v0 + u v1 + v v2
+};
+
+// Decides per hit whether a surface is there (alpha masks); the same for every ray kind, so the
+// ground truth and the colour see the same holes.
+class CoverageTest {
+ public:
+  virtual ~CoverageTest() = default;
+  virtual bool covered(const Mesh& mesh, unsigned triangle, float u, float v) const = 0;
+};
+
+// What Embree's filter function of a masked mesh gets.
+struct MaskedMesh {
+  const Mesh* mesh;
+  const CoverageTest* coverage;
 };
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(const Scene& scene);
+  // `coverage` (may be null) is asked about the triangles whose material has an alpha mask.
+  EmbreeScene(const Scene& scene, const CoverageTest* coverage);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -57,6 +73,7 @@ class EmbreeScene {
 
   // Poses at the two times of set_times (evaluated once per call there, not per ray).
   const Pose& pose_now(unsigned mesh) const { return poses_now_[mesh]; }
+  const Pose& world_to_object_now(unsigned mesh) const { return inverse_now_[mesh]; }
   const Pose& pose_next(unsigned mesh) const { return poses_next_[mesh]; }
   const MeshRef& mesh(unsigned index) const { return meshes_[index]; }
   const Scene& scene() const { return scene_; }
@@ -70,8 +87,10 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
   std::vector<RTCScene> bvhs_;
+  std::vector<MaskedMesh> masked_;  // reserved up front: Embree keeps pointers into it
   RTCScene now_ = nullptr, next_ = nullptr;
-  std::vector<Pose> poses_now_, poses_next_;
+  std::vector<Pose> poses_now_, poses_next_, inverse_now_;
+  const CoverageTest* coverage_;
   bool posed_ = false;
   double time_now_ = 0, time_next_ = 0;  // of the poses above
 };

@@ -9,11 +9,10 @@
 #include <limits>
 
 #include "flowscape/core/random.h"
+#include "surface.h"
 
 namespace flowscape {
 namespace {
-
-using Rgb = Eigen::Vector3d;
 
 double unit(std::uint64_t bits) { return double(bits >> 11) * 0x1.0p-53; }
 
@@ -139,39 +138,20 @@ struct Lights {
   Rgb sun_irradiance, sun_disc_radiance;
 };
 
-struct Surface {
-  Vec3 position, normal;  // normal faces the incoming ray
-  bool front;             // the ray arrives from the side the geometric normal points to
-  const Material* material;
-  Rgb albedo;
-};
-
-Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin, const Vec3& dir) {
-  const MeshRef& ref = embree.mesh(hit.mesh);
-  const Pose& pose = embree.pose_now(hit.mesh);
-  Vec3 normal = (pose.linear() * hit.normal.cast<double>()).normalized();
-  const bool front = normal.dot(dir) < 0;
-  if (!front) normal = -normal;
-  const Vec3 position = origin + hit.distance * dir;
-  const auto& materials = embree.scene().materials;
-  const Material& m =
-      materials[ref.mesh->materials.empty() ? 0 : ref.mesh->materials[hit.triangle]];
-  Rgb albedo = m.albedo.cast<double>();
-  // checker cells are centred on multiples of the size, so planes there are not split
-  if (m.checker_size > 0) {
-    const Vec3 cell = ((pose.inverse() * position) * (1 / m.checker_size)).array() + 0.5;
-    const long parity =
-        long(std::floor(cell.x())) + long(std::floor(cell.y())) + long(std::floor(cell.z()));
-    if (parity & 1) albedo = m.checker_albedo.cast<double>();
-  }
-  return {position, normal, front, &m, albedo};
-}
-
 constexpr double kFar = std::numeric_limits<double>::infinity();
+
+// After a diffuse or fog event a path's cone opens this wide (radians): what it sees next is
+// looked up blurred, as the average over the many directions it could have taken.
+constexpr double kScatteredSpread = 0.2;
 
 struct PathState {
   Vec3 origin, dir;
   Rgb radiance = Rgb::Zero(), throughput = Rgb::Ones();
+  // The ray's cone for texture filtering (ray cones): width at the origin (m) and spread (rad).
+  double width = 0, spread = 0;
+  // Whether what it meets is textured: after a diffuse or fog event the cone is so wide that a
+  // texture filtered over it is its material's mean.
+  bool textured = true;
   // Camera rays and specular chains from the camera may see the sun disc itself; after a diffuse
   // or fog event the sun comes through next-event estimation only (no sun caustics: they would be
   // rare, huge fireflies at these sample counts).
@@ -189,7 +169,7 @@ SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const
                Vec2 u) {
   const Vec3 to_sun = lights.sun_sample(u);
   const double cos_n = to_sun.dot(s.normal);
-  if (cos_n <= 0) return {};
+  if (cos_n <= 0 || to_sun.dot(s.geometric) <= 0) return {};
   const double fog = lights.foggy() ? std::exp(-lights.optical_depth(origin, to_sun, kFar)) : 1;
   return {
       {origin, to_sun, true},
@@ -206,6 +186,7 @@ void scatter_in_fog(const Lights& lights, const Vec3& point, Vec2 light_sample, 
   sun = {{point, to_sun, true},
          path.throughput.cwiseProduct(lights.sun_irradiance) * (fog / (4 * kPi))};
   path.origin = point, path.dir = uniform_direction(lobe_sample), path.sun_visible = false;
+  path.spread = kScatteredSpread, path.textured = false;
 }
 
 bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the path survives
@@ -216,11 +197,21 @@ bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the p
   return true;
 }
 
+// What every path of a frame shares.
+struct FrameContext {
+  const EmbreeScene& embree;
+  const ImageTextures& images;
+  const Lights& lights;
+  bool textures;
+};
+
 // One bounce of a path at `hit`: a scattering event in the fog before it, or what the path sees
-// (sky, sun disc, emission, a rain streak), the sun ray, and the scattered direction. Returns
-// whether the path goes on.
-bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, int bounce,
+// (sky, sun disc, emission, a rain streak), the sun ray, and the scattered direction. Directions
+// follow the shading normal; a direction it sends below the geometric surface ends the path.
+// Returns whether the path goes on.
+bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look, int bounce,
              Sampler& sampler, PathState& path, SunRay& sun) {
+  const Lights& lights = frame.lights;
   Vec3 &origin = path.origin, &dir = path.dir;
   Rgb& throughput = path.throughput;
   const Vec2 flight = sampler.next(), light_sample = sampler.next(), lobe_sample = sampler.next(),
@@ -228,6 +219,7 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
   if (lights.foggy()) {
     const double distance = lights.free_flight(origin, dir, flight.x());
     if (distance < hit.distance) {
+      path.width += path.spread * distance;
       scatter_in_fog(lights, origin + distance * dir, light_sample, lobe_sample, path, sun);
       return russian_roulette(bounce, choice.y(), throughput);
     }
@@ -237,7 +229,8 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
         lights.sky_radiance(dir) + (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
     return false;
   }
-  const Surface s = surface_at(embree, hit, origin, dir);
+  path.width += path.spread * hit.distance;
+  const Surface s = surface_at(frame.embree, hit, origin, dir, look);
   const Material& m = *s.material;
   const double offset = 1e-4 * (1 + s.position.norm());
   if (m.kind == Material::Kind::Emissive ||
@@ -249,8 +242,9 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
     origin = s.position + offset * dir;
     return true;
   }
-  const Vec3 above = s.position + offset * s.normal, below = s.position - offset * s.normal;
+  const Vec3 above = s.position + offset * s.geometric, below = s.position - offset * s.geometric;
   const double cos_i = -dir.dot(s.normal);
+  bool transmitted = false;
   bool diffuse = m.kind == Material::Kind::Diffuse;
   if (m.kind == Material::Kind::Glossy)
     diffuse = choice.x() >= schlick(cos_i, 0.04);  // coat or base
@@ -258,6 +252,7 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
     sun = sun_ray(lights, s, above, throughput, light_sample);
     throughput = throughput.cwiseProduct(s.albedo);
     origin = above, dir = cosine_direction(s.normal, lobe_sample), path.sun_visible = false;
+    path.spread = kScatteredSpread, path.textured = false;
   } else if (m.kind == Material::Kind::Glass) {
     const double eta = s.front ? 1 / 1.5 : 1.5;
     if (choice.x() < dielectric_fresnel(cos_i, eta)) {
@@ -265,21 +260,68 @@ bool advance(const EmbreeScene& embree, const Lights& lights, const Hit& hit, in
     } else {
       const double cos_t = std::sqrt(1 - eta * eta * (1 - cos_i * cos_i));
       origin = below, dir = (eta * dir + (eta * cos_i - cos_t) * s.normal).normalized();
+      transmitted = true;
     }
   } else {  // Metal, or the clear coat of Glossy: a mirror blurred by the roughness
     if (m.kind == Material::Kind::Metal) throughput = throughput.cwiseProduct(s.albedo);
-    dir = (reflect(dir, s.normal) + m.roughness * cosine_direction(s.normal, lobe_sample))
+    dir = (reflect(dir, s.normal) + s.roughness * cosine_direction(s.normal, lobe_sample))
               .normalized();
-    if (dir.dot(s.normal) <= 0) return false;
-    origin = above;
+    origin = above, path.spread += s.roughness;
   }
+  if ((dir.dot(s.geometric) > 0) == transmitted) return false;
   return russian_roulette(bounce, choice.y(), throughput);
 }
 
+// The textured looks of the camera hits of one pixel: one evaluation per triangle its samples hit,
+// where the pixel centre's ray meets that triangle's plane, filtered over the pixel's footprint
+// there (as a mip-mapped texture lookup is). The samples hitting that triangle share it, so a
+// texture costs one evaluation per pixel and surface rather than one per sample, and a textured
+// pixel does not flicker with its samples' jitter.
+class PixelLooks {
+ public:
+  PixelLooks(const FrameContext& frame, const Vec3& origin, const Vec3& centre, double spread)
+      : frame_(frame), origin_(origin), centre_(centre), spread_(spread) {}
+
+  const TexturedLook& at(const Hit& hit, const Vec3& sample_dir) {
+    for (int k = 0; k < count_; ++k)
+      if (entries_[k].mesh == hit.mesh && entries_[k].triangle == hit.triangle)
+        return entries_[k].look;
+    const int slot = count_ < kSlots ? count_++ : kSlots - 1;  // the last slot is reused
+    entries_[slot] = {hit.mesh, hit.triangle, look_at_centre(hit, sample_dir)};
+    return entries_[slot].look;
+  }
+
+ private:
+  TexturedLook look_at_centre(const Hit& hit, const Vec3& sample_dir) const {
+    const EmbreeScene& embree = frame_.embree;
+    const Pose& pose = embree.pose_now(hit.mesh);
+    const Vec3 normal = pose.linear() * hit.normal.cast<double>();
+    const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
+    const Vec3 corner = pose * mesh.vertices[mesh.triangles[hit.triangle][0]].cast<double>();
+    const double facing = normal.dot(centre_), t = normal.dot(corner - origin_) / facing;
+    if (t > 0 && std::isfinite(t) && t < 4 * hit.distance + 1)
+      return textured_look(embree, frame_.images, hit, origin_ + t * centre_, centre_, spread_ * t);
+    return textured_look(embree, frame_.images, hit, origin_ + hit.distance * sample_dir,
+                         sample_dir, spread_ * hit.distance);
+  }
+
+  static constexpr int kSlots = 8;
+  struct Entry {
+    unsigned mesh, triangle;
+    TexturedLook look;
+  };
+  const FrameContext& frame_;
+  Vec3 origin_, centre_;
+  double spread_;
+  Entry entries_[kSlots];
+  int count_ = 0;
+};
+
 // Traces up to kBundleSize paths in lock step, one Embree packet per bounce and one for the sun
 // rays: the samples of one pixel stay coherent for the camera rays and the first sun rays.
-void trace_bundle(const EmbreeScene& embree, const Lights& lights, PathState* paths,
+void trace_bundle(const FrameContext& frame, PixelLooks& camera_looks, PathState* paths,
                   Sampler* samplers, int count, int max_bounces, std::uint64_t& rays) {
+  const EmbreeScene& embree = frame.embree;
   BundleRay bundle[kBundleSize];
   Hit hits[kBundleSize];
   SunRay sun[kBundleSize];
@@ -293,7 +335,19 @@ void trace_bundle(const EmbreeScene& embree, const Lights& lights, PathState* pa
     for (int i = 0; i < count; ++i) {
       sun[i] = {};
       if (!bundle[i].active) continue;
-      bundle[i].active = advance(embree, lights, hits[i], bounce, samplers[i], paths[i], sun[i]);
+      const TexturedLook* look = nullptr;
+      TexturedLook own;  // a specular chain's hit: its own point
+      if (frame.textures && hits[i].found && paths[i].textured && is_textured(embree, hits[i])) {
+        if (bounce == 0) {
+          look = &camera_looks.at(hits[i], paths[i].dir);
+        } else {
+          own = textured_look(embree, frame.images, hits[i],
+                              paths[i].origin + hits[i].distance * paths[i].dir, paths[i].dir,
+                              paths[i].width + paths[i].spread * hits[i].distance);
+          look = &own;
+        }
+      }
+      bundle[i].active = advance(frame, hits[i], look, bounce, samplers[i], paths[i], sun[i]);
       bundle[i].origin = paths[i].origin, bundle[i].direction = paths[i].dir;
     }
     BundleRay sun_rays[kBundleSize];
@@ -306,7 +360,8 @@ void trace_bundle(const EmbreeScene& embree, const Lights& lights, PathState* pa
 
 }  // namespace
 
-Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const FramePair& frames,
+Image<float> path_trace(EmbreeScene& embree, const ImageTextures& images,
+                        const Projection& projection, const FramePair& frames,
                         const RenderOptions& options, RenderStats* stats) {
   embree.set_times(frames.time, frames.next_time);
   const int W = projection.width, H = projection.height;
@@ -315,6 +370,7 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
   const Mat3 rotation = frames.rig.linear();
   std::atomic<std::uint64_t> rays{0};
   const Lights lights(embree.scene().environment);
+  const FrameContext frame{embree, images, lights, options.textures};
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;
     std::vector<Vec2> shifts(1 + 4 * (options.max_bounces + 1));  // camera jitter, 4 per bounce
@@ -323,6 +379,8 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
           mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
       pixel_shifts(key, shifts);
       const PixelRays camera_rays(projection, x, y);
+      PixelLooks camera_looks(frame, origin, (rotation * camera_rays({0.5, 0.5})).normalized(),
+                              projection.pixel_spread());
       Rgb sum = Rgb::Zero();
       for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
         const int count = std::min(kBundleSize, options.samples_per_pixel - first);
@@ -333,8 +391,9 @@ Image<float> path_trace(EmbreeScene& embree, const Projection& projection, const
           const Vec2 jitter = samplers[i].next();
           paths[i].origin = origin;
           paths[i].dir = (rotation * camera_rays(jitter)).normalized();
+          paths[i].spread = projection.pixel_spread();
         }
-        trace_bundle(embree, lights, paths, samplers, count, options.max_bounces, row_rays);
+        trace_bundle(frame, camera_looks, paths, samplers, count, options.max_bounces, row_rays);
         for (int i = 0; i < count; ++i) sum += paths[i].radiance;
       }
       const Rgb mean = sum / std::max(1, options.samples_per_pixel);

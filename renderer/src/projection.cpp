@@ -30,6 +30,10 @@ std::optional<Vec2> Projection::project(const Vec3& direction) const {
               height / 2.0 + focal * camera.y() / camera.z());
 }
 
+double Projection::pixel_spread() const {
+  return kind == Kind::Equirectangular ? 2 * kPi / width : 1 / focal;
+}
+
 namespace {
 
 // |d| <= pi / 64 (half a pixel of an ERP at least 64 wide): the series' remainders are below 1e-17.

@@ -7,13 +7,15 @@
 
 #include "embree_scene.h"
 #include "flowscape/stitcher/geometry.h"
+#include "image_textures.h"
 #include "path_tracer.h"
 
 namespace flowscape {
 
 struct Renderer::Impl {
+  ImageTextures images;
   EmbreeScene embree;
-  explicit Impl(const Scene& scene) : embree(scene) {}
+  explicit Impl(const Scene& scene) : images(scene), embree(scene, &images) {}
 };
 
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
@@ -21,7 +23,7 @@ Renderer::~Renderer() = default;
 
 Image<float> Renderer::color(const Projection& projection, const FramePair& frames,
                              const RenderOptions& options, RenderStats* stats) {
-  return path_trace(impl_->embree, projection, frames, options, stats);
+  return path_trace(impl_->embree, impl_->images, projection, frames, options, stats);
 }
 
 namespace {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "city_materials.h"
 #include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
@@ -13,27 +14,15 @@ constexpr double kStride = 1.4;
 
 Pose at(double x, double y, double z) { return Pose(Eigen::Translation3d(x, y, z)); }
 
-std::uint16_t paint(Scene& scene, Random& random, Material::Kind kind, double lo, double hi) {
-  Material m;
-  m.kind = kind;
-  m.albedo = {float(random.uniform(lo, hi)), float(random.uniform(lo, hi)),
-              float(random.uniform(lo, hi))};
-  m.roughness = 0.05f;
-  return add_material(scene, m);
-}
-
-std::uint16_t tyre_material(Scene& scene) {
-  Material m;
-  m.albedo = {0.04f, 0.04f, 0.04f}, m.checker_size = 0.12f, m.checker_albedo = {0.2f, 0.2f, 0.2f};
-  return add_material(scene, m);
-}
-
-// A wheel of `radius` at `hub` in the actor's frame, turning about its axle with the distance.
-Part wheel(const V3& hub, double radius, double width, std::uint16_t tyre,
+// A wheel of `radius` at `hub` in the actor's frame, turning about its axle with the distance:
+// a tyre and, a millimetre proud of its sidewalls, a rim with spokes.
+Part wheel(const V3& hub, double radius, double width, std::uint16_t tyre, std::uint16_t rim,
            std::shared_ptr<const Track> track) {
   Part part;
-  add_cylinder(part.mesh, Pose(Eigen::AngleAxisd(kPi / 2, V3::UnitX())) * at(0, 0, -width / 2),
-               radius, width, {C::Vehicles, tyre}, 12);
+  const Pose axle(Eigen::AngleAxisd(kPi / 2, V3::UnitX()));
+  add_cylinder(part.mesh, axle * at(0, 0, -width / 2), radius, width, {C::Vehicles, tyre}, 16);
+  add_cylinder(part.mesh, axle * at(0, 0, -width / 2 - 0.002), 0.62 * radius, width + 0.004,
+               {C::Vehicles, rim}, 16);
   part.pose = [hub, radius, track](double t) {
     return Pose(Eigen::Translation3d(hub) *
                 Eigen::AngleAxisd(track->distance_at(t) / radius, V3::UnitY()));
@@ -53,25 +42,47 @@ Part limb(const V3& joint, const V3& half, double swing, double phase, std::uint
   return part;
 }
 
-Mesh vehicle_body(ActorKind kind, std::uint16_t body, std::uint16_t glass) {
+// What a vehicle body is painted with.
+struct Livery {
+  std::uint16_t body, glass, head_light, tail_light, plate;
+};
+
+// Head lights at the front, tail lights and a number plate at the back of a body whose front is
+// at x = L, back at x = -L, `low` the height of the lights.
+void lights(Mesh& mesh, double L, double W, double low, const Livery& l) {
+  for (double side : {-1.0, 1.0}) {
+    add_oriented_box(mesh, at(L + 0.005, side * 0.7 * W, low), V3(0.02, 0.16, 0.06),
+                     {C::Vehicles, l.head_light});
+    add_oriented_box(mesh, at(-L - 0.005, side * 0.75 * W, low + 0.05), V3(0.02, 0.12, 0.05),
+                     {C::Vehicles, l.tail_light});
+  }
+  add_oriented_box(mesh, at(-L - 0.01, 0, low - 0.1), V3(0.01, 0.26, 0.055),
+                   {C::Vehicles, l.plate});
+}
+
+Mesh vehicle_body(ActorKind kind, const Livery& l) {
   Mesh mesh;
   const KindSize size = kind_size(kind);
   const double L = size.length / 2, W = size.width / 2;
+  const std::uint16_t body = l.body, glass = l.glass;
   switch (kind) {
     case ActorKind::Car:
       add_oriented_box(mesh, at(0, 0, 0.7), V3(L, W, 0.35), {C::Vehicles, body});
       add_oriented_box(mesh, at(-0.15 * L, 0, 1.3), V3(0.55 * L, 0.92 * W, 0.27),
                        {C::Vehicles, glass});
+      lights(mesh, L, W, 0.75, l);
       break;
     case ActorKind::Truck:
       add_oriented_box(mesh, at(0.78 * L, 0, 1.5), V3(0.22 * L, W, 0.95), {C::Vehicles, body});
       add_oriented_box(mesh, at(0.92 * L, 0, 2.0), V3(0.09 * L, 0.95 * W, 0.4),
                        {C::Vehicles, glass});
       add_oriented_box(mesh, at(-0.22 * L, 0, 2.0), V3(0.76 * L, W, 1.4), {C::Vehicles, body});
+      lights(mesh, L, W, 0.8, l);
       break;
     case ActorKind::Bus:
       add_oriented_box(mesh, at(0, 0, 1.7), V3(L, W, 1.3), {C::Vehicles, body});
       add_oriented_box(mesh, at(0, 0, 2.0), V3(0.98 * L, 1.01 * W, 0.45), {C::Vehicles, glass});
+      lights(mesh, L, W, 0.7, l);
       break;
     case ActorKind::Bike:
       add_oriented_box(mesh, at(0, 0, 0.75), V3(0.6, 0.12, 0.2), {C::Vehicles, body});
@@ -84,29 +95,36 @@ Mesh vehicle_body(ActorKind kind, std::uint16_t body, std::uint16_t glass) {
   return mesh;
 }
 
-void add_wheels(Actor& actor, ActorKind kind, std::uint16_t tyre,
+void add_wheels(Actor& actor, ActorKind kind, Random& random, Scene& scene,
                 const std::shared_ptr<const Track>& track) {
   const KindSize size = kind_size(kind);
   const double radius = kind == ActorKind::Car ? 0.33 : kind == ActorKind::Bike ? 0.32 : 0.5;
+  const double width = kind == ActorKind::Bike ? 0.1 : 0.25;
+  const std::uint16_t tyre = add_material(scene, city_materials::tyre(width)),
+                      rim = add_material(scene, city_materials::wheel_rim(random.bits()));
   if (kind == ActorKind::Bike) {
     for (double x : {-0.6, 0.6})
-      actor.parts.push_back(wheel(V3(x, 0, radius), radius, 0.1, tyre, track));
+      actor.parts.push_back(wheel(V3(x, 0, radius), radius, width, tyre, rim, track));
     return;
   }
   const double axle = size.length / 2 - (kind == ActorKind::Car ? 0.8 : 1.4);
   for (double x : {-axle, axle})
     for (double y : {-size.width / 2 + 0.15, size.width / 2 - 0.15})
-      actor.parts.push_back(wheel(V3(x, y, radius), radius, 0.25, tyre, track));
+      actor.parts.push_back(wheel(V3(x, y, radius), radius, width, tyre, rim, track));
 }
 
 void add_body(Actor& actor, const std::shared_ptr<const Track>& track, Random& random,
               Scene& scene) {
-  const std::uint16_t shirt = paint(scene, random, Material::Kind::Diffuse, 0.05, 0.8),
-                      trousers = paint(scene, random, Material::Kind::Diffuse, 0.03, 0.4),
-                      skin = paint(scene, random, Material::Kind::Diffuse, 0.3, 0.7);
+  namespace cm = city_materials;
+  const auto seed = random.bits();
+  const std::uint16_t shirt = add_material(scene, cm::clothing(seed, false)),
+                      trousers = add_material(scene, cm::clothing(seed + 1, true)),
+                      skin = add_material(scene, cm::skin(seed + 2)),
+                      hair = add_material(scene, cm::hair(seed + 3));
   Part torso{{}, [](double) { return Pose::Identity(); }};
   add_oriented_box(torso.mesh, at(0, 0, 1.15), V3(0.13, 0.22, 0.3), {C::Pedestrian, shirt});
   add_oriented_box(torso.mesh, at(0, 0, 1.6), V3(0.1, 0.09, 0.12), {C::Pedestrian, skin});
+  add_oriented_box(torso.mesh, at(-0.015, 0, 1.71), V3(0.105, 0.095, 0.03), {C::Pedestrian, hair});
   actor.parts.push_back(std::move(torso));
   for (int side : {-1, 1}) {
     const double phase = side > 0 ? 0 : kPi;
@@ -146,13 +164,15 @@ Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const T
     add_body(actor, track, random, scene);
     return actor;
   }
-  const std::uint16_t body = paint(scene, random, Material::Kind::Glossy, 0.03, 0.8);
-  Material glass;
-  glass.kind = Material::Kind::Metal, glass.albedo = {0.2f, 0.22f, 0.25f}, glass.roughness = 0.02f;
-  const std::uint16_t window = add_material(scene, glass);
-  actor.parts.push_back(
-      {vehicle_body(kind, body, window), [](double) { return Pose::Identity(); }});
-  add_wheels(actor, kind, tyre_material(scene), track);
+  namespace cm = city_materials;
+  const auto seed = random.bits();
+  const Livery livery{add_material(scene, cm::car_paint(seed)),
+                      add_material(scene, cm::vehicle_glass()),
+                      add_material(scene, cm::lamp({0.85f, 0.85f, 0.8f})),
+                      add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f})),
+                      add_material(scene, cm::number_plate(seed + 1))};
+  actor.parts.push_back({vehicle_body(kind, livery), [](double) { return Pose::Identity(); }});
+  add_wheels(actor, kind, random, scene, track);
   return actor;
 }
 

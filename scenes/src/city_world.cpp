@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "city_materials.h"
 #include "flowscape/core/random.h"
 #include "flowscape/scenes/shapes.h"
 
@@ -14,53 +15,46 @@ using V3 = Eigen::Vector3d;
 using C = SemanticClass;
 using Footprint = std::array<V2, 4>;
 
-Material diffuse(float r, float g, float b, float checker = 0, float shade = 0.8f) {
-  Material m;
-  m.albedo = {r, g, b};
-  if (checker > 0) m.checker_size = checker, m.checker_albedo = m.albedo * shade;
-  return m;
-}
-
-Material shiny(Material::Kind kind, float r, float g, float b, float roughness) {
-  Material m;
-  m.kind = kind, m.albedo = {r, g, b}, m.roughness = roughness;
-  return m;
-}
-
 struct Palette {
-  std::uint16_t asphalt, white, yellow, pavement, curb, grass, dirt, concrete, water, window, roof,
-      bark, leaves, metal, sign, fence, rail, tank;
-  std::vector<std::uint16_t> facades;
+  std::uint16_t asphalt, white, yellow, pavement, curb, grass, dirt, concrete, water, glass, bark,
+      metal, sign, signal, timber, rail, tank;
+  std::vector<std::uint16_t> leaves;  // a few tree species
 };
 
-Palette make_palette(Scene& scene, Random& random) {
-  Palette p;
+Palette make_palette(Scene& scene, std::uint64_t seed, const Style& style) {
+  namespace cm = city_materials;
+  Random random(seed);
   const auto add = [&](const Material& m) { return add_material(scene, m); };
-  p.asphalt = add(diffuse(0.07f, 0.07f, 0.075f, 0.5f, 0.85f));
-  p.white = add(diffuse(0.75f, 0.75f, 0.72f));
-  p.yellow = add(diffuse(0.7f, 0.55f, 0.1f));
-  p.pavement = add(diffuse(0.42f, 0.41f, 0.39f, 1.0f, 0.85f));
-  p.curb = add(diffuse(0.55f, 0.55f, 0.53f));
-  p.grass = add(diffuse(0.1f, 0.25f, 0.06f, 2.0f, 0.75f));
-  p.dirt = add(diffuse(0.3f, 0.23f, 0.16f, 3.0f, 0.85f));
-  p.concrete = add(diffuse(0.5f, 0.49f, 0.46f, 2.0f, 0.9f));
-  p.water = add(shiny(Material::Kind::Glossy, 0.02f, 0.05f, 0.07f, 0.05f));
-  p.window = add(shiny(Material::Kind::Metal, 0.25f, 0.3f, 0.35f, 0.05f));
-  p.roof = add(diffuse(0.45f, 0.15f, 0.1f, 0.6f, 0.8f));
-  p.bark = add(diffuse(0.25f, 0.17f, 0.1f));
-  p.leaves = add(diffuse(0.08f, 0.22f, 0.05f, 0.7f, 0.7f));
-  p.metal = add(shiny(Material::Kind::Metal, 0.5f, 0.5f, 0.52f, 0.35f));
-  p.sign = add(diffuse(0.1f, 0.2f, 0.6f));
-  p.fence = add(diffuse(0.4f, 0.3f, 0.2f));
-  p.rail = add(shiny(Material::Kind::Metal, 0.45f, 0.4f, 0.35f, 0.4f));
-  p.tank = add(diffuse(0.75f, 0.75f, 0.72f));
-  for (int k = 0; k < 6; ++k) {
-    const float r = float(random.uniform(0.3, 0.75)), g = float(random.uniform(0.3, 0.7)),
-                b = float(random.uniform(0.25, 0.65));
-    p.facades.push_back(add(diffuse(r, g, b, float(random.uniform(0.5, 1.5)), 0.85f)));
-  }
+  const auto next = [&] { return random.bits(); };
+  Palette p;
+  p.asphalt = add(cm::asphalt(next()));
+  p.white = add(cm::road_paint(next(), {0.75f, 0.75f, 0.72f}));
+  p.yellow = add(cm::road_paint(next(), {0.7f, 0.55f, 0.1f}));
+  p.pavement = add(cm::paving(next(), style.buildings == Style::Buildings::Towers ? 0.6 : 0.4));
+  p.curb = add(cm::kerb(next()));
+  p.grass = add(cm::grass(next()));
+  p.dirt = add(cm::soil(next()));
+  p.concrete = add(cm::concrete(next()));
+  p.water = add(cm::water());
+  p.glass = add(cm::window_glass(next()));
+  p.bark = add(cm::bark(next()));
+  p.metal = add(cm::painted_metal(next(), {0.3f, 0.32f, 0.3f}));
+  p.sign = add(cm::sign_face(next()));
+  p.signal = add(cm::signal_head());
+  p.timber = add(cm::timber(next()));
+  p.rail = add(cm::painted_metal(next(), {0.4f, 0.33f, 0.27f}));
+  p.tank = add(cm::painted_metal(next(), {0.75f, 0.75f, 0.72f}));
+  for (int k = 0; k < 3; ++k) p.leaves.push_back(add(cm::leaves(next())));
   return p;
 }
+
+// How a building's facades are dressed.
+struct Dress {
+  std::uint16_t facade, frame, roof;
+  bool sills, ledges, cornice;
+};
+
+constexpr double kFacadeDepth = 0.3;  // the most that frames, sills, ledges and cornices stand out
 
 class WorldBuilder {
  public:
@@ -68,7 +62,8 @@ class WorldBuilder {
       : layout_(layout),
         random_(seed ^ 0x5deece66dull),
         mesh_(scene.world),
-        palette_(make_palette(scene, random_)) {
+        scene_(scene),
+        palette_(make_palette(scene, random_.bits(), layout.style)) {
     flat_ = std::all_of(layout.node_height.begin(), layout.node_height.end(),
                         [](double h) { return h == 0; });
   }
@@ -83,8 +78,10 @@ class WorldBuilder {
  private:
   V3 at(const V2& p, double lift) const { return {p.x(), p.y(), layout_.height(p) + lift}; }
 
-  // A horizontal rectangle following the ground, split into cells of at most `cell` metres.
-  void patch(V2 lo, V2 hi, double lift, Paint paint, double cell = 6) {
+  // A horizontal rectangle following the ground, split into cells of at most `cell` metres; uv
+  // is (x, y) unless a frame is given.
+  void patch(V2 lo, V2 hi, double lift, Paint paint, double cell = 6,
+             const UvFrame& frame = UvFrame{}) {
     if (flat_) cell = 1e9;
     const int nx = std::max(1, int(std::ceil((hi.x() - lo.x()) / cell)));
     const int ny = std::max(1, int(std::ceil((hi.y() - lo.y()) / cell)));
@@ -95,7 +92,7 @@ class WorldBuilder {
                     lo.y() + (hi.y() - lo.y()) * (j + dj) / ny);
         };
         add_quad(mesh_, at(corner(0, 0), lift), at(corner(1, 0), lift), at(corner(1, 1), lift),
-                 at(corner(0, 1), lift), paint);
+                 at(corner(0, 1), lift), paint, frame);
       }
   }
 
@@ -135,6 +132,7 @@ class WorldBuilder {
     }
   }
 
+  // Roads map u along the road and v across it from the centre line (asphalt's tyre tracks).
   void roads() {
     const Paint road{C::Road, palette_.asphalt};
     for (int j = 0; j < layout_.ny(); ++j)
@@ -142,13 +140,13 @@ class WorldBuilder {
           V2(layout_.xs.front() - layout_.half_width_y(0), layout_.ys[j] - layout_.half_width_x(j)),
           V2(layout_.xs.back() + layout_.half_width_y(layout_.nx() - 1),
              layout_.ys[j] + layout_.half_width_x(j)),
-          0, road, 4);
+          0, road, 4, {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
     for (int i = 0; i < layout_.nx(); ++i)
       for (int j = 0; j + 1 < layout_.ny(); ++j)
         patch(V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] + layout_.half_width_x(j)),
               V2(layout_.xs[i] + layout_.half_width_y(i),
                  layout_.ys[j + 1] - layout_.half_width_x(j + 1)),
-              0, road, 4);
+              0, road, 4, {V3(layout_.xs[i], 0, 0), V3::UnitY(), -V3::UnitX()});
     for (const Lane& lane : layout_.lanes) markings(lane);
     for (int n = 0; n < int(layout_.node_height.size()); ++n) junction(n);
     for (int j = 0; j < layout_.ny(); ++j)
@@ -231,7 +229,7 @@ class WorldBuilder {
     for (int k = 0; k < 2; ++k) {  // one head facing each road at this corner
       const V2 face = k == 0 ? V2(sign.x(), 0) : V2(0, sign.y());
       add_oriented_box(mesh_, upright(spot + 0.3 * face, kCurb + 3.7), V3(0.15, 0.15, 0.45),
-                       {C::TrafficLight, palette_.metal});
+                       {C::TrafficLight, palette_.signal});
     }
   }
 
@@ -246,13 +244,26 @@ class WorldBuilder {
     const double yaw = std::atan2(toward_road.y(), toward_road.x());
     add_oriented_box(mesh_, upright(spot + toward_road * 0.8, kCurb + 6.4, yaw),
                      V3(0.9, 0.08, 0.06), {C::Pole, palette_.metal});
+    add_oriented_box(mesh_, upright(spot + toward_road * 1.6, kCurb + 6.3, yaw),
+                     V3(0.3, 0.14, 0.06), {C::Pole, palette_.tank});  // the lamp head
   }
 
+  // A trunk and a crown of irregular leaf clusters around it.
   void tree(const V2& p, double lift) {
     const double height = random_.uniform(2.0, 3.5), crown = random_.uniform(1.5, 2.8);
-    add_cylinder(mesh_, upright(p, lift), 0.18, height, {C::Vegetation, palette_.bark}, 6);
-    add_cylinder(mesh_, upright(p, lift + height - 0.3, random_.uniform(0, 1)), crown, crown * 1.6,
-                 {C::Vegetation, palette_.leaves}, 7);
+    add_cylinder(mesh_, upright(p, lift), 0.18, height + 0.6 * crown,
+                 {C::Vegetation, palette_.bark}, 7);
+    const Paint leaves{C::Vegetation, palette_.leaves[random_.below(int(palette_.leaves.size()))]};
+    const int clusters = 4 + random_.below(4);
+    for (int k = 0; k < clusters; ++k) {
+      const double a = 2 * kPi * (k + random_.uniform(0, 0.6)) / clusters;
+      const double r = k == 0 ? 0 : crown * random_.uniform(0.35, 0.6);
+      const V3 centre = at(p, lift + height + crown * random_.uniform(0.5, 1.1)) +
+                        V3(r * std::cos(a), r * std::sin(a), 0);
+      const double size = crown * (k == 0 ? 0.75 : random_.uniform(0.45, 0.65));
+      add_lumpy_ball(mesh_, centre, V3(size, size, size * random_.uniform(0.7, 0.95)), leaves,
+                     random_);
+    }
   }
 
   bool free_of_solids(const V2& lo, const V2& hi) const {
@@ -287,50 +298,82 @@ class WorldBuilder {
     }
   }
 
-  void building(const V2& lo, const V2& hi, double height, std::uint16_t facade, bool roof) {
+  // Every building its own facade, frames and roof (materials seeded per building).
+  Dress dress(bool houses) {
+    namespace cm = city_materials;
+    const auto seed = random_.bits();
+    return {add_material(scene_, cm::facade(seed, houses)),
+            add_material(scene_, cm::window_frame(seed + 1)),
+            add_material(scene_, cm::roof_tiles(seed + 2)),
+            random_.chance(0.7),
+            !houses && random_.chance(0.5),
+            !houses && random_.chance(0.5)};
+  }
+
+  void building(const V2& lo, const V2& hi, double height, const Dress& d, bool roof) {
     const V2 corners[4] = {lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
     double base = 1e9;
     for (const V2& c : corners) base = std::min(base, layout_.height(c));
     const V3 lo3(lo.x(), lo.y(), base - 0.5), hi3(hi.x(), hi.y(), base + kCurb + height);
     Mesh box;
     add_box(box, lo3.cast<float>(), hi3.cast<float>(), C::Building);
-    box.materials.assign(box.triangles.size(), facade);
+    box.materials.assign(box.triangles.size(), d.facade);
     append_mesh(mesh_, box);
-    solids_.push_back({corners[0], corners[1], corners[2], corners[3]});
-    windows(corners, base + kCurb, height);
-    if (roof) gable(lo3, hi3);
+    const V2 grow(kFacadeDepth, kFacadeDepth);  // frames, sills and ledges stand out this far
+    solids_.push_back({lo - grow, V2(hi.x() + grow.x(), lo.y() - grow.y()), hi + grow,
+                       V2(lo.x() - grow.x(), hi.y() + grow.y())});
+    for (int k = 0; k < 4; ++k) facade(corners[k], corners[(k + 1) % 4], base + kCurb, height, d);
+    if (roof) gable(lo3, hi3, d.roof);
   }
 
-  void windows(const V2 (&corners)[4], double base, double height) {
-    const Paint glass{C::Building, palette_.window};
-    for (int k = 0; k < 4; ++k) {
-      const V2 a = corners[k], b = corners[(k + 1) % 4], along = (b - a).normalized();
-      const V2 out(along.y(), -along.x());
-      const double length = (b - a).norm();
-      const int columns = int(length / 3.2);
-      for (double z = base + 1.2; z + 2.2 < base + height; z += 3.3)
-        for (int c = 0; c < columns; ++c) {
-          const V2 p = a + along * (length * (c + 0.5) / columns) + out * 0.03;
-          const V3 p0(p.x() - along.x() * 0.7, p.y() - along.y() * 0.7, z),
-              p1(p.x() + along.x() * 0.7, p.y() + along.y() * 0.7, z);
-          add_quad(mesh_, p0, p1, p1 + V3(0, 0, 1.8), p0 + V3(0, 0, 1.8), glass);
-        }
+  // A box on a facade from a to b (outside on the right of a -> b): `along` from a, `out` from
+  // the wall, `z` above the ground; half extents (along, out, up).
+  void on_wall(const V2& a, const V2& b, double along, double out, double z, const V3& half,
+               Paint paint) {
+    const V2 dir = (b - a).normalized(), normal(dir.y(), -dir.x());
+    const V2 p = a + dir * along + normal * out;
+    add_oriented_box(mesh_,
+                     Pose(Eigen::Translation3d(p.x(), p.y(), z) *
+                          Eigen::AngleAxisd(std::atan2(dir.y(), dir.x()), V3::UnitZ())),
+                     half, paint);
+  }
+
+  // Windows in framed openings with sills, storey ledges and a cornice, per the building's dress.
+  void facade(const V2& a, const V2& b, double base, double height, const Dress& d) {
+    const Paint glass{C::Building, palette_.glass}, frame{C::Building, d.frame};
+    const double length = (b - a).norm();
+    const int columns = int(length / 3.2);
+    const V2 dir = (b - a) / length, out(dir.y(), -dir.x());
+    for (double z = base + 1.2; z + 2.2 < base + height; z += 3.3) {
+      for (int c = 0; c < columns; ++c) {
+        const double s = length * (c + 0.5) / columns;
+        on_wall(a, b, s, 0.03, z + 0.9, V3(0.78, 0.03, 0.98), frame);
+        const V2 p = a + dir * s + out * 0.065;
+        const V3 p0(p.x() - dir.x() * 0.68, p.y() - dir.y() * 0.68, z + 0.02),
+            p1(p.x() + dir.x() * 0.68, p.y() + dir.y() * 0.68, z + 0.02);
+        add_quad(mesh_, p0, p1, p1 + V3(0, 0, 1.76), p0 + V3(0, 0, 1.76), glass);
+        if (d.sills) on_wall(a, b, s, 0.1, z - 0.1, V3(0.85, 0.1, 0.03), frame);
+      }
+      if (d.ledges) on_wall(a, b, length / 2, 0.06, z - 0.35, V3(length / 2, 0.06, 0.08), frame);
     }
+    if (d.cornice)
+      on_wall(a, b, length / 2, 0.15, base + height - 0.2, V3(length / 2 + 0.15, 0.15, 0.2), frame);
   }
 
-  void gable(const V3& lo, const V3& hi) {
-    const Paint roof{C::Building, palette_.roof};
+  void gable(const V3& lo, const V3& hi, std::uint16_t material) {
+    const Paint roof{C::Building, material};
     const double ridge = hi.z() + 0.4 * (hi.y() - lo.y()), my = (lo.y() + hi.y()) / 2;
     const V3 a(lo.x(), lo.y(), hi.z()), b(hi.x(), lo.y(), hi.z()), c(hi.x(), hi.y(), hi.z()),
         d(lo.x(), hi.y(), hi.z()), r0(lo.x(), my, ridge), r1(hi.x(), my, ridge);
-    add_quad(mesh_, a, b, r1, r0, roof);
-    add_quad(mesh_, c, d, r0, r1, roof);
+    // u along the eaves, v up the slope from them
+    add_quad(mesh_, a, b, r1, r0, roof, {a, V3::UnitX(), (r0 - a).normalized()});
+    add_quad(mesh_, c, d, r0, r1, roof, {c, -V3::UnitX(), (r1 - c).normalized()});
     add_quad(mesh_, b, c, r1, r1, roof);
     add_quad(mesh_, d, a, r0, r0, roof);
   }
 
   void fence(const V2& a, const V2& b) {
-    const Paint paint{C::Fence, palette_.fence};
+    const Paint paint{C::Fence, palette_.timber};
     const V2 along = (b - a).normalized();
     for (double s = 0; s <= (b - a).norm(); s += 2.5)
       add_oriented_box(mesh_, upright(a + along * s, kCurb + 0.6), V3(0.05, 0.05, 0.6), paint);
@@ -391,8 +434,8 @@ class WorldBuilder {
         if (random_.chance(style.fill)) {
           const double y0 = side == 0 ? lo.y() + setback : hi.y() - setback - depth;
           const V2 blo(x, y0), bhi(x + width, y0 + depth);
-          building(blo, bhi, random_.uniform(style.height_min, style.height_max),
-                   palette_.facades[random_.below(int(palette_.facades.size()))], houses);
+          building(blo, bhi, random_.uniform(style.height_min, style.height_max), dress(houses),
+                   houses);
           if (houses) {
             const double front = side == 0 ? lo.y() + 1 : hi.y() - 1;
             fence(V2(x, front), V2(x + width - 2.5, front));
@@ -429,11 +472,11 @@ class WorldBuilder {
     for (double x = lo.x() + 20; x < hi.x() - 10; x += 60) {
       const V3 p = at(V2(x, quay - 15), kCurb);
       add_oriented_box(mesh_, Pose(Eigen::Translation3d(p - V3(0, 0, 0.15))), V3(3, 15, 0.15),
-                       {C::Bridge, palette_.fence});
+                       {C::Bridge, palette_.timber});
       for (double dy : {-12.0, 0.0, 12.0})
         for (double dx : {-2.5, 2.5})
           add_cylinder(mesh_, Pose(Eigen::Translation3d(p + V3(dx, dy, -2.5))), 0.2, 2.3,
-                       {C::Bridge, palette_.bark}, 6);
+                       {C::Bridge, palette_.timber}, 6);
     }
     for (double x = lo.x() + 5; x < hi.x() - 5; x += 14) tree(V2(x, hi.y() - 3), kCurb);
   }
@@ -441,6 +484,7 @@ class WorldBuilder {
   const Layout& layout_;
   Random random_;
   Mesh& mesh_;
+  Scene& scene_;
   Palette palette_;
   bool flat_;
   std::vector<Footprint> solids_;

@@ -1,5 +1,7 @@
 #include "flowscape/scenes/test_scenes.h"
 
+#include <cmath>
+
 namespace flowscape {
 
 Scene box_room(float half) {
@@ -36,6 +38,18 @@ Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity)
   box.parts.push_back(std::move(body));
   scene.actors.push_back(std::move(box));
   return scene;
+}
+
+std::shared_ptr<const Pattern> checker(double size, const Eigen::Vector3f& contrast) {
+  return std::make_shared<const Pattern>(
+      [size, contrast](const TexturePoint& at, const SurfaceLook& base) {
+        const Vec3 cell = (at.position / size).array() + 0.5;
+        const long parity =
+            long(std::floor(cell.x())) + long(std::floor(cell.y())) + long(std::floor(cell.z()));
+        SurfaceLook look = base;
+        if (parity & 1) look.albedo = base.albedo.cwiseProduct(contrast);
+        return look;
+      });
 }
 
 }  // namespace flowscape

@@ -174,8 +174,8 @@ namespace {
 Scene sunlit_street() {
   Scene scene = textured_plane(10, 60);
   Material wall;
-  wall.albedo = {0.8f, 0.5f, 0.2f}, wall.checker_size = 1,
-  wall.checker_albedo = {0.05f, 0.1f, 0.3f};
+  wall.albedo = {0.8f, 0.5f, 0.2f};
+  wall.pattern = checker(1, {0.0625f, 0.2f, 1.5f});  // cells of (0.05, 0.1, 0.3)
   Material paint;
   paint.kind = Material::Kind::Glossy, paint.albedo = {0.1f, 0.6f, 0.1f};
   scene.materials = {Material{}, wall, paint};

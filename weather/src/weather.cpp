@@ -145,8 +145,7 @@ void wet_materials(const Weather& w, Scene& scene) {
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     if (!ground[m]) continue;
     Material& material = scene.materials[m];
-    material.albedo *= float(1 - 0.45 * w.wetness);
-    material.checker_albedo *= float(1 - 0.45 * w.wetness);
+    material.albedo *= float(1 - 0.45 * w.wetness);  // patterns modulate the darker base
     if (w.wetness > 0.3 && material.kind == Material::Kind::Diffuse) {
       material.kind = Material::Kind::Glossy;
       material.roughness = float(0.02 + 0.15 * (1 - w.wetness));

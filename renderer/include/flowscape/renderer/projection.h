@@ -23,6 +23,9 @@ struct Projection {
   Vec3 ray(Vec2 pixel) const;
   // Continuous pixel position of a rig-frame direction; nullopt behind a pinhole.
   std::optional<Vec2> project(const Vec3& direction) const;
+  // The angle one pixel spans (at the image centre of a pinhole, on the equator of an ERP): how
+  // fast a camera ray's footprint grows with distance.
+  double pixel_spread() const;
 };
 
 // Rays through many points of one pixel (the samples of a path tracer). The ERP form takes the sin

@@ -29,6 +29,9 @@ struct RenderOptions {
   int max_bounces = 4;  // Russian roulette may end paths earlier after the third bounce
   std::uint64_t seed =
       0;  // with the pixel, the sample and the dimension, seeds every random number
+  // Procedural patterns and image maps; false: every material's plain albedo and roughness (for
+  // comparisons; alpha masks still cut holes: they are geometry).
+  bool textures = true;
 };
 
 struct RenderStats {

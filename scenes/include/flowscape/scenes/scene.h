@@ -3,9 +3,12 @@
 // actors whose parts move rigidly with time. Scenes know nothing of the renderer.
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "flowscape/core/types.h"
+#include "flowscape/scenes/texture.h"
 
 namespace flowscape {
 
@@ -38,6 +41,16 @@ enum class SemanticClass : std::uint8_t {
   Terrain = 22
 };
 
+// Image files of a material (glTF's metallic-roughness model), looked up with mip-mapped filtering
+// at the surface's uv. Colours are sRGB-encoded files; the others hold linear data.
+struct ImageMaps {
+  std::string base_color;          // RGB(A): multiplies the albedo; A is the coverage
+  std::string metallic_roughness;  // G: roughness, B: metalness (glTF)
+  std::string normal;              // tangent-space normal map (glTF: +y up in the image)
+  float alpha_cutoff = -1;         // >= 0: texels with coverage below it are holes (alpha mask)
+  bool empty() const { return base_color.empty() && metallic_roughness.empty() && normal.empty(); }
+};
+
 // Surface appearance. Albedos are linear RGB reflectances in [0, 1].
 struct Material {
   enum class Kind : std::uint8_t {
@@ -49,20 +62,25 @@ struct Material {
     Streak,  // a rain streak: with probability `opacity` glows with `emission`, else lets light by
   };
   Kind kind = Kind::Diffuse;
-  Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};
-  // A solid 3-D checker in the object's own frame (it moves with the object); 0 = plain albedo.
-  float checker_size = 0;
-  Eigen::Vector3f checker_albedo{0.2f, 0.2f, 0.2f};
-  float roughness = 0.1f;             // width of the Glossy / Metal lobe (0 = mirror)
-  Eigen::Vector3f emission{0, 0, 0};  // linear radiance, W / (m^2 sr) per channel
-  float opacity = 1;                  // Streak only
+  Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};  // the mean colour (what is seen without textures)
+  float roughness = 0.1f;                    // width of the Glossy / Metal lobe (0 = mirror)
+  Eigen::Vector3f emission{0, 0, 0};         // linear radiance, W / (m^2 sr) per channel
+  float opacity = 1;                         // Streak only
+  std::shared_ptr<const Pattern> pattern;    // procedural texture (texture.h), or none
+  ImageMaps images;                          // image textures, or none
 };
 
+// Per-vertex attributes are optional: each is empty or holds one entry per vertex.
 struct Mesh {
   std::vector<Eigen::Vector3f> vertices;
   std::vector<Eigen::Vector3i> triangles;
   std::vector<SemanticClass> classes;    // one per triangle
   std::vector<std::uint16_t> materials;  // one per triangle, into Scene::materials; empty = all 0
+  std::vector<Eigen::Vector3f> normals;  // unit shading normals (smooth shading); empty = flat
+  std::vector<Eigen::Vector2f> uvs;      // texture coordinates; empty = all 0
+  // Tangents along +u with the bitangent's handedness in w (glTF); empty = from the uvs per
+  // triangle
+  std::vector<Eigen::Vector4f> tangents;
 };
 
 // A participating medium whose extinction falls off with height: sigma(z) = density *

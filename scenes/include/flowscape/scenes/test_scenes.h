@@ -1,5 +1,6 @@
 #pragma once
-// Small built-in scenes with motion simple enough to derive ground truth by hand, for tests.
+// Small built-in scenes with motion simple enough to derive ground truth by hand, for tests, and
+// the test fixtures' solid checker texture.
 #include "flowscape/scenes/scene.h"
 #include "flowscape/scenes/shapes.h"
 
@@ -15,5 +16,10 @@ Scene textured_plane(double distance = 10, double side = 400);
 // box_room plus a 2 m box (instance 7, Vehicles) centred at `centre` at t = 0 and moving with
 // `velocity` (m/s).
 Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity);
+
+// A solid 3-D checker of cells `size` wide in the object's frame (it moves with the object), cells
+// centred on multiples of the size: the base albedo and the base times `contrast`. Point sampled
+// (a fixture for tests, not a filtered texture).
+std::shared_ptr<const Pattern> checker(double size, const Eigen::Vector3f& contrast);
 
 }  // namespace flowscape

@@ -1,0 +1,49 @@
+#pragma once
+// Internal: the materials of the city maps, one function per kind of surface, each a procedural
+// pattern (texture.h) over uv in metres along the surface, varied by its seed. A material's albedo
+// is its mean colour (what a render without textures shows); the pattern modulates it.
+#include <cstdint>
+
+#include "flowscape/scenes/scene.h"
+
+namespace flowscape::city_materials {
+
+using Rgb = Eigen::Vector3f;
+
+// Ground. Roads carry uv with u along the road and v across it from the centre line.
+Material asphalt(std::uint64_t seed);
+Material road_paint(std::uint64_t seed, const Rgb& colour);  // worn lane markings
+Material paving(std::uint64_t seed, double slab);            // sidewalk slabs `slab` m square
+Material kerb(std::uint64_t seed);                           // granite blocks
+Material concrete(std::uint64_t seed);                       // lots, quays, walls
+Material soil(std::uint64_t seed);                           // dirt, gravel, rail beds
+Material grass(std::uint64_t seed);                          // lawns, parks, terrain
+
+// Buildings: a facade style per building (brick, plaster, concrete panels or glass curtain),
+// chosen and coloured by the seed, so no two neighbours look alike.
+Material facade(std::uint64_t seed, bool houses);
+Material roof_tiles(std::uint64_t seed);
+Material window_glass(std::uint64_t seed);
+Material window_frame(std::uint64_t seed);  // frames, sills, ledges, cornices
+
+// Vegetation and street furniture.
+Material bark(std::uint64_t seed);
+Material leaves(std::uint64_t seed);
+Material painted_metal(std::uint64_t seed, const Rgb& colour);  // poles, rails, housings
+Material sign_face(std::uint64_t seed);                         // a round traffic sign
+Material signal_head();                                         // a traffic light's lamps
+Material timber(std::uint64_t seed);                            // fences, piers
+Material water();
+
+// Vehicles and people (uv and positions in the actor's own frame).
+Material car_paint(std::uint64_t seed);
+Material tyre(double width);             // rubber, tread grooves around (the wheel's frame)
+Material wheel_rim(std::uint64_t seed);  // a metal disc with spokes on its faces
+Material vehicle_glass();
+Material lamp(const Rgb& colour);  // head and tail lights
+Material number_plate(std::uint64_t seed);
+Material clothing(std::uint64_t seed, bool trousers);
+Material skin(std::uint64_t seed);
+Material hair(std::uint64_t seed);
+
+}  // namespace flowscape::city_materials
