@@ -27,6 +27,7 @@ struct Options {
   double time = 1.0;
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
   std::vector<std::string> weathers;  // when given: one row per weather, of the first map
+  std::map<std::string, std::string> models;
 };
 
 // One row of the sheet: colour | flow | semantics of map `map` in a weather preset, at the frame
@@ -34,7 +35,8 @@ struct Options {
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   const int frame = int(std::lround(o.time * kFrameRate));
   const Sequence sequence =
-      make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2});
+      make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2,
+                     o.models});
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
@@ -77,11 +79,15 @@ int main(int argc, char** argv) {
   app.add_option("--weathers", o.weathers,
                  "one row per weather preset (sunny cloud fog rain wet wet_cloudy soft_rain "
                  "hard_rain clear_sunset foggy_rain) of the first map; default: sunny");
+  std::vector<std::string> models;
+  app.add_option("--model", models,
+                 "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
   CLI11_PARSE(app, argc, argv);
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
+    o.models = parse_models(models);
     const std::size_t rows = o.weathers.empty() ? o.maps.size() : o.weathers.size();
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
     for (std::size_t row = 0; row < rows; ++row) {

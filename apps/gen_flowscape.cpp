@@ -60,6 +60,11 @@ int main(int argc, char** argv) {
   option("--vehicles", "vehicles", defaults.vehicles, "vehicles per map");
   option("--pedestrians", "pedestrians", defaults.pedestrians, "pedestrians per map");
   option("--seed", "seed", defaults.seed, "release seed");
+  std::vector<std::string> models;
+  app.add_option("--model", models,
+                 "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
+                 "glTF or anything assimp reads, textures included; repeat for several kinds "
+                 "(replaces the config file's \"models\")");
   bool no_cube = false, check = false;
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
@@ -72,6 +77,7 @@ int main(int argc, char** argv) {
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
     if (no_cube) given["cube"] = false;
+    if (!models.empty()) given["models"] = parse_models(models);
     sources.file = config_file;
     ReleaseConfig c = resolve_config(sources);
     if (!shard.empty()) parse_shard(shard, c);

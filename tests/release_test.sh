@@ -111,6 +111,11 @@ check "the other shard" "$bin/gen_flowscape" --config "$work/config.json" --shar
 check "flowscape_merge --verify" "$bin/flowscape_merge" "$work/e" --verify
 check "merged shards = one process" diff -r "$work/d" "$work/e"
 
+box=/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf
+check "--model: a textured glTF car" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 16 --face-size 8 --spp 1 --vehicles 8 --pedestrians 2 --model "car=$box" --out "$work/m"
+check "the release records its models" grep -q "\"car\": \"$box\"" "$work/m/manifest.json"
+check "--model without a kind" fails_clearly "--model wants KIND=FILE" "$bin/gen_flowscape" --model "$box" --out "$work/x"
+check "--model of a missing file" fails_clearly "nope.glb: no such model file" "$bin/gen_flowscape" --model car=nope.glb --out "$work/x"
 check "bad shard" fails_clearly "shard K/N needs 0 <= K < N" "$bin/gen_flowscape" --shard 3/2 --out "$work/x"
 check "unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/gen_flowscape" --weather sunny,snow --out "$work/x"
 check "missing config" fails_clearly "nope.json: cannot open the config file" "$bin/gen_flowscape" --config "$work/nope.json" --out "$work/x"

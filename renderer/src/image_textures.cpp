@@ -39,6 +39,7 @@ int ImageTextures::open(const std::string& path) {
   if (!system_) {
     system_ = OIIO::TextureSystem::create(false);
     system_->attribute("automip", 1);  // PNG and JPEG files get their mip-maps in memory
+    system_->attribute("unassociatedalpha", 1);  // colours as stored, not multiplied by alpha
   }
   paths_.push_back(path);
   handles_.push_back(system_->get_texture_handle(OIIO::ustring(path)));
@@ -50,6 +51,9 @@ bool ImageTextures::try_lookup(int id, const Vec2& uv, double footprint, int cha
   OIIO::TextureOpt options;
   options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
   options.fill = 1;
+  // trilinear mip-mapping (OIIO's default bicubic is a smoothing B-spline, not interpolating)
+  options.interpmode = OIIO::TextureOpt::InterpBilinear;
+  options.mipmode = OIIO::TextureOpt::MipModeTrilinear;
   const float width = float(footprint);
   return system_->texture(handles_[id], system_->get_perthread_info(), options, float(uv.x()),
                           float(uv.y()), width, 0, 0, width, channels, out);

@@ -128,7 +128,7 @@ std::map<ActorKind, Mesh> user_models(const CityConfig& config, Scene& scene) {
     material.albedo = {0.5f, 0.45f, 0.4f};
     const SemanticClass cls =
         kind == ActorKind::Pedestrian ? SemanticClass::Pedestrian : SemanticClass::Vehicles;
-    models[kind] = load_model(path, cls, kind_size(kind).length, add_material(scene, material));
+    models[kind] = load_model(path, cls, kind_size(kind).length, scene, material);
   }
   return models;
 }

@@ -1,83 +1,17 @@
-#include "flowscape/scenes/model_io.h"
-
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#include <tiny_gltf.h>
-
-#include <assimp/Importer.hpp>
-#include <cstring>
+// Whole scenes to glTF with their classes, and back.
 #include <filesystem>
 #include <map>
-#include <stdexcept>
 
-#include "flowscape/scenes/shapes.h"
+#include "flowscape/scenes/model_io.h"
+#include "gltf_read.h"
 
 namespace flowscape {
 namespace {
 
 using V3 = Eigen::Vector3d;
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem) {
-  throw std::runtime_error(path + ": " + problem);
-}
-
-// glTF and assimp: y up, z forward, x = y_up x z_forward (left); ours: x forward, y left, z up.
-Eigen::Vector3f from_y_up(const V3& p) {
-  return Eigen::Vector3f(float(p.z()), float(p.x()), float(p.y()));
-}
-V3 to_y_up(const Eigen::Vector3f& p) { return {p.y(), p.z(), p.x()}; }
-
-Eigen::Matrix4d node_matrix(const tinygltf::Node& node) {
-  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  if (node.matrix.size() == 16) return Eigen::Map<const Eigen::Matrix4d>(node.matrix.data());
-  Eigen::Affine3d a = Eigen::Affine3d::Identity();
-  if (node.translation.size() == 3)
-    a.translate(V3(node.translation[0], node.translation[1], node.translation[2]));
-  if (node.rotation.size() == 4)
-    a.rotate(
-        Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
-  if (node.scale.size() == 3) a.scale(V3(node.scale[0], node.scale[1], node.scale[2]));
-  m = a.matrix();
-  return m;
-}
-
-// Element `i` of an accessor as doubles, checked against its buffer.
-double accessor_value(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
-                      std::size_t i, int component, const std::string& path) {
-  if (accessor.bufferView < 0 || accessor.bufferView >= int(model.bufferViews.size()))
-    fail(path, "accessor without a valid buffer view");
-  const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-  const tinygltf::Buffer& buffer = model.buffers.at(view.buffer);
-  const int size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
-  const int count = tinygltf::GetNumComponentsInType(accessor.type);
-  const std::size_t stride = view.byteStride ? view.byteStride : std::size_t(size * count);
-  const std::size_t offset = view.byteOffset + accessor.byteOffset + i * stride + component * size;
-  if (size <= 0 || offset + size > buffer.data.size()) fail(path, "accessor reads past its buffer");
-  const unsigned char* p = buffer.data.data() + offset;
-  switch (accessor.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return *p;
-    default:
-      fail(path, "unsupported accessor component type");
-  }
-}
-
-// Appends the triangles of a glTF mesh, vertices moved by `transform` (in the file's frame).
+// Appends the triangles of a glTF mesh (positions only), vertices moved by `transform` (in the
+// file's frame).
 void append_gltf_mesh(const tinygltf::Model& model, const tinygltf::Mesh& gltf_mesh,
                       const Eigen::Matrix4d& transform, SemanticClass cls, std::uint16_t material,
                       const std::string& path, Mesh& mesh) {
@@ -91,7 +25,7 @@ void append_gltf_mesh(const tinygltf::Model& model, const tinygltf::Mesh& gltf_m
       const Eigen::Vector4d p(accessor_value(model, positions, v, 0, path),
                               accessor_value(model, positions, v, 1, path),
                               accessor_value(model, positions, v, 2, path), 1);
-      mesh.vertices.push_back(from_y_up((transform * p).head<3>()));
+      mesh.vertices.push_back(from_y_up((transform * p).head<3>()).cast<float>());
     }
     std::vector<int> indices;
     if (primitive.indices >= 0) {
@@ -112,78 +46,6 @@ void append_gltf_mesh(const tinygltf::Model& model, const tinygltf::Mesh& gltf_m
   }
 }
 
-tinygltf::Model read_gltf(const std::string& path) {
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model model;
-  std::string error, warning;
-  const bool binary = std::filesystem::path(path).extension() == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
-  if (!ok) fail(path, error.empty() ? "cannot read glTF" : error.substr(0, error.find('\n')));
-  return model;
-}
-
-void walk_nodes(const tinygltf::Model& model, int index, const Eigen::Matrix4d& parent,
-                const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit,
-                int depth = 0) {
-  if (index < 0 || index >= int(model.nodes.size()) || depth > 64) return;
-  const tinygltf::Node& node = model.nodes[index];
-  const Eigen::Matrix4d transform = parent * node_matrix(node);
-  visit(node, transform);
-  for (int child : node.children) walk_nodes(model, child, transform, visit, depth + 1);
-}
-
-void for_each_node(
-    const tinygltf::Model& model,
-    const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit) {
-  if (model.scenes.empty()) {
-    for (int n = 0; n < int(model.nodes.size()); ++n)
-      walk_nodes(model, n, Eigen::Matrix4d::Identity(), visit);
-    return;
-  }
-  const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-  for (int n : model.scenes[scene].nodes) walk_nodes(model, n, Eigen::Matrix4d::Identity(), visit);
-}
-
-Mesh load_gltf(const std::string& path, SemanticClass cls, std::uint16_t material) {
-  const tinygltf::Model model = read_gltf(path);
-  Mesh mesh;
-  for_each_node(model, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
-    if (node.mesh >= int(model.meshes.size()))
-      fail(path, "node " + node.name + " refers to a mesh the file lacks");
-    if (node.mesh >= 0)
-      append_gltf_mesh(model, model.meshes[node.mesh], transform, cls, material, path, mesh);
-  });
-  return mesh;
-}
-
-Mesh load_with_assimp(const std::string& path, SemanticClass cls, std::uint16_t material) {
-  Assimp::Importer importer;
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_PreTransformVertices);
-  if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
-    fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
-  Mesh mesh;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* source = scene->mMeshes[m];
-    const int base = int(mesh.vertices.size());
-    for (unsigned v = 0; v < source->mNumVertices; ++v) {
-      const aiVector3D& p = source->mVertices[v];
-      mesh.vertices.push_back(from_y_up(V3(p.x, p.y, p.z)));
-    }
-    for (unsigned f = 0; f < source->mNumFaces; ++f) {
-      const aiFace& face = source->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      mesh.triangles.emplace_back(base + int(face.mIndices[0]), base + int(face.mIndices[1]),
-                                  base + int(face.mIndices[2]));
-      mesh.classes.push_back(cls);
-      mesh.materials.push_back(material);
-    }
-  }
-  return mesh;
-}
-
 }  // namespace
 
 std::string class_name(SemanticClass cls) {
@@ -194,25 +56,6 @@ std::string class_name(SemanticClass cls) {
       "TrafficLight", "Static",   "Dynamic",  "Water",      "Terrain"};
   const int id = int(cls);
   return id < int(std::size(kNames)) ? kNames[id] : "class" + std::to_string(id);
-}
-
-Mesh load_model(const std::string& path, SemanticClass cls, double length, std::uint16_t material) {
-  if (!std::filesystem::is_regular_file(path)) fail(path, "no such model file");
-  if (!(length > 0)) fail(path, "model length must be positive");
-  const std::string extension = std::filesystem::path(path).extension().string();
-  Mesh mesh = extension == ".gltf" || extension == ".glb" ? load_gltf(path, cls, material)
-                                                          : load_with_assimp(path, cls, material);
-  if (mesh.triangles.empty()) fail(path, "the model has no triangles");
-  Eigen::Vector3f lo = mesh.vertices[0], hi = mesh.vertices[0];
-  for (const Eigen::Vector3f& v : mesh.vertices) {
-    if (!v.allFinite()) fail(path, "a vertex is not finite");
-    lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  }
-  if (!(hi.x() > lo.x())) fail(path, "the model has no extent along its forward axis");
-  const float scale = float(length / (hi.x() - lo.x()));
-  const Eigen::Vector3f centre((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2, lo.z());
-  for (Eigen::Vector3f& v : mesh.vertices) v = (v - centre) * scale;
-  return mesh;
 }
 
 void export_gltf(const Scene& scene, double t, const std::string& path) {

@@ -10,6 +10,7 @@
 #include "flowscape/scenes/test_scenes.h"
 #include "flowscape/stitcher/stitch.h"
 #include "independent_math.h"
+#include "warp_errors.h"
 
 using namespace flowscape;
 
@@ -202,26 +203,6 @@ Scene sunlit_street() {
   return scene;
 }
 
-// Bilinear sample of channel c in 8-bit sRGB, as a dataset's PNG would hold it.
-double srgb8(const Image<float>& linear, double x, double y, int c) {
-  const int x0 = int(std::floor(x - 0.5)), y0 = int(std::floor(y - 0.5));
-  const double fx = x - 0.5 - x0, fy = y - 0.5 - y0;
-  double sum = 0;
-  for (int k = 0; k < 4; ++k) {
-    const int xi = std::clamp(x0 + k % 2, 0, linear.width - 1),
-              yi = std::clamp(y0 + k / 2, 0, linear.height - 1);
-    sum += (k % 2 ? fx : 1 - fx) * (k / 2 ? fy : 1 - fy) * linear_to_srgb8(linear.pixel(xi, yi)[c]);
-  }
-  return sum;
-}
-
-double mean_abs_difference(const Image<float>& a, double ax, double ay, const Image<float>& b,
-                           double bx, double by) {
-  double sum = 0;
-  for (int c = 0; c < 3; ++c) sum += std::abs(srgb8(a, ax, ay, c) - srgb8(b, bx, by, c));
-  return sum / 3;
-}
-
 }  // namespace
 
 TEST_CASE("a sunlit diffuse plane has radiance albedo * irradiance * cos / pi") {
@@ -274,32 +255,16 @@ TEST_CASE("backward-warping frame t+1 with the ground-truth flow reproduces fram
   const Image<float> first = renderer.color(camera, frames, {32, 3, 1});
   const Image<float> again = renderer.color(camera, frames, {32, 3, 2});  // other noise
   const Image<float> second = renderer.color(camera, next, {32, 3, 1});
-  const GroundTruth gt = renderer.ground_truth(camera, frames);
-  double pe = 0, wpe = 0, noise = 0, wpe_off = 0;
-  int count = 0;
-  for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x) {
-      const float* f = gt.flow.pixel(x, y);
-      const double px = x + 0.5, py = y + 0.5, tx = px + f[0], ty = py + f[1];
-      if (!*gt.valid.pixel(x, y) || tx < 1 || ty < 1 || tx > camera.width - 1 ||
-          ty > camera.height - 1)
-        continue;
-      pe += mean_abs_difference(second, px, py, first, px, py);
-      wpe += mean_abs_difference(second, tx, ty, first, px, py);
-      wpe_off += mean_abs_difference(second, tx + 1, ty, first, px, py);  // a flow 1 px off
-      noise += mean_abs_difference(again, px, py, first, px, py);
-      ++count;
-    }
-  REQUIRE(count > camera.width * camera.height / 2);
-  pe /= count, wpe /= count, noise /= count, wpe_off /= count;
-  INFO("PE " << pe << ", WPE " << wpe << ", noise between two renders of one frame " << noise
-             << ", WPE of a flow 1 px off " << wpe_off);
+  const WarpErrors e = warp_errors(first, again, second, renderer.ground_truth(camera, frames));
+  REQUIRE(e.pixels > camera.width * camera.height / 2);
+  INFO("PE " << e.pe << ", WPE " << e.wpe << ", noise between two renders of one frame " << e.noise
+             << ", WPE of a flow 1 px off " << e.wpe_off);
   // Diff = (PE - WPE) / PE above 80 % (the paper's FlowScape: 48.7 %). What remains beyond the
   // render noise is bilinear sampling across the box-filtered checker and object edges, and the
   // view-dependent clear coat of the box; a flow one pixel off is clearly worse.
-  CHECK(wpe < 0.2 * pe);
-  CHECK(wpe < 3 * noise);
-  CHECK(wpe < 0.7 * wpe_off);
+  CHECK(e.wpe < 0.2 * e.pe);
+  CHECK(e.wpe < 3 * e.noise);
+  CHECK(e.wpe < 0.7 * e.wpe_off);
 }
 
 TEST_CASE("an articulated part moves with its own pose on top of its actor's") {

@@ -220,14 +220,15 @@ TEST_CASE("user models from assimp's test set replace built-in actors") {
   const std::string gltf = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
   const std::string obj = "/usr/share/assimp/models/OBJ/box.obj";
   REQUIRE(std::filesystem::exists(gltf));  // Debian's assimp-testmodels (scripts/install_deps.sh)
-  const Mesh box = load_model(gltf, SemanticClass::Vehicles, 4.5);
+  Scene scene;
+  const Mesh box = load_model(gltf, SemanticClass::Vehicles, 4.5, scene);
   CHECK(box.triangles.size() == 12);
   Eigen::Vector3f lo = box.vertices[0], hi = lo;
   for (const auto& v : box.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
   CHECK(hi.x() - lo.x() == Approx(4.5));
   CHECK(lo.z() == Approx(0).margin(1e-6));
   CHECK((lo.x() + hi.x()) == Approx(0).margin(1e-5));
-  CHECK(load_model(obj, SemanticClass::Pedestrian, 0.5).triangles.size() == 12);
+  CHECK(load_model(obj, SemanticClass::Pedestrian, 0.5, scene).triangles.size() == 12);
   CityConfig config;
   config.map = 1, config.vehicles = 20, config.pedestrians = 5, config.models = {{"car", gltf}};
   const City city = make_city(config);
@@ -242,8 +243,9 @@ TEST_CASE("user models from assimp's test set replace built-in actors") {
   TempDir dir;
   const std::string corrupt = (dir.path / "broken.gltf").string();
   std::ofstream(corrupt) << "{ not json";
-  CHECK_THROWS_WITH(load_model(corrupt, SemanticClass::Vehicles, 4), Catch::Contains(corrupt));
-  CHECK_THROWS_WITH(load_model((dir.path / "none.obj").string(), SemanticClass::Vehicles, 4),
+  CHECK_THROWS_WITH(load_model(corrupt, SemanticClass::Vehicles, 4, scene),
+                    Catch::Contains(corrupt));
+  CHECK_THROWS_WITH(load_model((dir.path / "none.obj").string(), SemanticClass::Vehicles, 4, scene),
                     Catch::Contains("none.obj: no such model file"));
   config.models = {{"plane", gltf}};
   CHECK_THROWS_WITH(make_city(config), Catch::Contains("unknown actor kind \"plane\""));

@@ -24,7 +24,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("max_bounces", c.max_bounces), visit("weathers", c.weathers);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
-  visit("cube", c.cube);
+  visit("cube", c.cube), visit("models", c.models);
 }
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {
@@ -52,6 +52,10 @@ void validate(const ReleaseConfig& c) {
   for (const std::string& w : c.weathers) weather_preset(w);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");
+  for (const auto& [kind, path] : c.models) {
+    kind_from_name(kind);
+    if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");
+  }
   require(c.shards >= 1 && c.shard >= 0 && c.shard < c.shards, "shard K/N needs 0 <= K < N (got " +
                                                                    std::to_string(c.shard) + "/" +
                                                                    std::to_string(c.shards) + ")");
@@ -112,6 +116,18 @@ void parse_shard(const std::string& text, ReleaseConfig& config) {
     throw std::invalid_argument("--shard wants K/N, e.g. 0/4 (got \"" + text + "\")");
   config.shard = k, config.shards = n;
   validate(config);
+}
+
+std::map<std::string, std::string> parse_models(const std::vector<std::string>& options) {
+  std::map<std::string, std::string> models;
+  for (const std::string& option : options) {
+    const std::size_t equals = option.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 == option.size())
+      throw std::invalid_argument("--model wants KIND=FILE, e.g. car=models/car.glb (got \"" +
+                                  option + "\")");
+    models[option.substr(0, equals)] = option.substr(equals + 1);
+  }
+  return models;
 }
 
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {

@@ -6,7 +6,7 @@ namespace flowscape {
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan) {
   return {plan.map,           plan.weather,         plan.seed,    config.vehicles,
-          config.pedestrians, int(plan.seed % 100), config.frames};
+          config.pedestrians, int(plan.seed % 100), config.frames, config.models};
 }
 
 FramePair Sequence::frame_pair(int frame) const {
@@ -22,6 +22,7 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.vehicles = spec.vehicles, city_config.pedestrians = spec.pedestrians;
   city_config.ego_start = spec.ego_start;
   city_config.duration = (spec.frames + 1) / kFrameRate;
+  city_config.models = spec.models;
   Sequence s{spec, make_city(city_config), randomized(weather_preset(spec.weather), spec.seed)};
   apply_weather(s.weather, spec.seed, s.city.rig_track(), s.city.scene);
   return s;

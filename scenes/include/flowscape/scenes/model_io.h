@@ -9,11 +9,19 @@
 
 namespace flowscape {
 
-// One mesh of class `cls` and material `material`, turned from the file's y-up, z-forward frame
-// into ours (x forward, y left, z up), scaled to `length` metres along x, centred on the origin in
-// x and y and standing on z = 0.
-Mesh load_model(const std::string& path, SemanticClass cls, double length,
-                std::uint16_t material = 0);
+// One mesh of class `cls`, turned from the file's y-up, z-forward frame into ours (x forward, y
+// left, z up), scaled to `length` metres along x, centred on the origin in x and y and standing on
+// z = 0. It keeps the file's uvs, normals (smooth shading; a file without them is flat-shaded) and
+// tangents, and its materials are added to `scene`: base colour, metallic-roughness and normal
+// textures, alpha masks (glTF MASK; BLEND is treated as MASK at 0.5). Triangles without a
+// material get `fallback`. Textures embedded in the file are written once to the texture cache
+// (texture_cache_dir()) so that the renderer's TextureSystem can mip-map them.
+Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
+                const Material& fallback = {});
+
+// Where embedded textures go: $FLOWSCAPE_TEXTURE_CACHE, else <temp dir>/flowscape-textures; one
+// file per distinct image, named by a hash of its bytes.
+std::string texture_cache_dir();
 
 // The world and every actor posed at time t, one glTF node per (instance, class) with extras
 // {"class_id": id, "class": name, "instance": id}; y-up as glTF wants it.

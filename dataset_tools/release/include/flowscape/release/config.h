@@ -3,6 +3,7 @@
 // file, the command line), and which sequences that is (plan_sequences).
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -18,6 +19,9 @@ struct ReleaseConfig {
   std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
                                     "sunny", "cloud", "fog",   "rain"};
   int vehicles = 100, pedestrians = 60;
+  // User models replacing the built-in ones, by actor kind (car, truck, bus, bike, pedestrian):
+  // glTF through tinygltf, OBJ/FBX/... through assimp, with their textures.
+  std::map<std::string, std::string> models;
   std::uint64_t seed = 0;
   bool cube = true;           // also write the six faces (the ERP colour is stitched from them)
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
@@ -44,6 +48,8 @@ ReleaseConfig resolve_config(const ConfigSources& sources);
 
 // "K/N" -> config.shard = K, config.shards = N; throws std::invalid_argument for other text.
 void parse_shard(const std::string& text, ReleaseConfig& config);
+// "KIND=FILE" options (--model) -> a models map; throws std::invalid_argument for other text.
+std::map<std::string, std::string> parse_models(const std::vector<std::string>& options);
 
 struct SequencePlan {
   std::string name;        // map<MM>_seq<SS>

@@ -20,6 +20,7 @@ struct SequenceSpec {
   int vehicles = 100, pedestrians = 60;
   int ego_start = 0;  // index into City::start_points
   int frames = 100;
+  std::map<std::string, std::string> models;  // ReleaseConfig::models
 };
 // The spec of a planned sequence of a release (its ego start follows from its seed).
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);

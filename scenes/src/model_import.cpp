@@ -1,0 +1,323 @@
+// Users' models for actors: glTF through tinygltf, everything else through assimp, with their uvs,
+// normals, tangents and textured materials.
+#include <assimp/GltfMaterial.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "flowscape/core/files.h"
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/model_io.h"
+#include "flowscape/scenes/shapes.h"
+#include "gltf_read.h"
+
+namespace flowscape {
+namespace fs = std::filesystem;
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+// A texture the file holds inside itself, as a file of its own in the cache (named by its bytes).
+std::string cached_texture(const unsigned char* bytes, std::size_t size, const std::string& type) {
+  std::uint64_t hash = mix_bits(size);
+  for (std::size_t k = 0; k < size; ++k) hash = mix_bits(hash ^ bytes[k]);
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(hash));
+  const fs::path path = fs::path(texture_cache_dir()) / (name + ("." + type));
+  if (!fs::exists(path))
+    write_text(path, std::string(reinterpret_cast<const char*>(bytes), size));
+  return path.string();
+}
+
+// "%20" and friends in a glTF uri.
+std::string decoded_uri(const std::string& uri) {
+  std::string out;
+  for (std::size_t k = 0; k < uri.size(); ++k) {
+    if (uri[k] == '%' && k + 2 < uri.size()) {
+      out += char(std::strtol(uri.substr(k + 1, 2).c_str(), nullptr, 16));
+      k += 2;
+    } else {
+      out += uri[k];
+    }
+  }
+  return out;
+}
+
+// What import collects: the mesh in the file's frame and its attributes' availability.
+struct Imported {
+  Mesh mesh;
+  bool normals = true, uvs = false, tangents = true;  // every part had them
+};
+
+// Appends one part's vertices; attributes that some part lacks are dropped at the end.
+void add_part(Imported& out, const std::vector<V3>& positions, const std::vector<V3>& normals,
+              const std::vector<Eigen::Vector2d>& uvs, const std::vector<Eigen::Vector4d>& tangents,
+              const std::vector<int>& indices, std::uint16_t material, SemanticClass cls,
+              const std::string& path) {
+  const int base = int(out.mesh.vertices.size());
+  out.normals = out.normals && normals.size() == positions.size();
+  out.uvs = out.uvs || !uvs.empty();
+  out.tangents = out.tangents && tangents.size() == positions.size();
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    out.mesh.vertices.push_back(from_y_up(positions[v]).cast<float>());
+    out.mesh.normals.push_back(v < normals.size()
+                                   ? Eigen::Vector3f(from_y_up(normals[v]).normalized().cast<float>())
+                                   : Eigen::Vector3f::Zero());
+    out.mesh.uvs.push_back(v < uvs.size() ? Eigen::Vector2f(uvs[v].cast<float>())
+                                          : Eigen::Vector2f::Zero());
+    const Eigen::Vector4d t = v < tangents.size() ? tangents[v] : Eigen::Vector4d::Zero();
+    const Eigen::Vector3d turned = from_y_up(t.head<3>());
+    out.mesh.tangents.emplace_back(float(turned.x()), float(turned.y()), float(turned.z()),
+                                   float(t.w()));
+  }
+  for (std::size_t k = 0; k + 2 < indices.size(); k += 3) {
+    for (int c = 0; c < 3; ++c)
+      if (indices[k + c] < 0 || std::size_t(indices[k + c]) >= positions.size())
+        fail(path, "triangle index out of range");
+    out.mesh.triangles.emplace_back(base + indices[k], base + indices[k + 1], base + indices[k + 2]);
+    out.mesh.classes.push_back(cls);
+    out.mesh.materials.push_back(material);
+  }
+}
+
+Mesh finished(Imported imported) {
+  Mesh& mesh = imported.mesh;
+  if (!imported.normals) mesh.normals.clear();
+  if (!imported.uvs) mesh.uvs.clear();
+  if (!imported.tangents || mesh.normals.empty()) mesh.tangents.clear();
+  return std::move(mesh);
+}
+
+// glTF's metallic-roughness model in our materials: metal, a clear-coated base while the surface is
+// smooth enough to show a coat, Lambertian when it is rough.
+Material::Kind pbr_kind(double metallic, double roughness) {
+  if (metallic >= 0.5) return Material::Kind::Metal;
+  return roughness >= 0.6 ? Material::Kind::Diffuse : Material::Kind::Glossy;
+}
+
+// ---- glTF ------------------------------------------------------------------------------------
+
+std::string gltf_image(const tinygltf::Model& model, int texture, const std::string& path) {
+  if (texture < 0) return {};
+  if (texture >= int(model.textures.size())) fail(path, "a material names a missing texture");
+  const int source = model.textures[texture].source;
+  if (source < 0 || source >= int(model.images.size()))
+    fail(path, "a texture names a missing image");
+  const tinygltf::Image& image = model.images[source];
+  if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0)
+    return (fs::path(path).parent_path() / decoded_uri(image.uri)).string();
+  if (image.image.empty()) fail(path, "an embedded image has no bytes");
+  return cached_texture(image.image.data(), image.image.size(),
+                        image.mimeType == "image/jpeg" ? "jpg" : "png");
+}
+
+Material gltf_material(const tinygltf::Model& model, const tinygltf::Material& m,
+                       const std::string& path) {
+  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+  Material out;
+  if (pbr.baseColorFactor.size() >= 3)
+    out.albedo = Eigen::Vector3f(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                                 float(pbr.baseColorFactor[2]));
+  out.kind = pbr_kind(pbr.metallicFactor, pbr.roughnessFactor);
+  out.roughness = float(pbr.roughnessFactor);
+  out.images.base_color = gltf_image(model, pbr.baseColorTexture.index, path);
+  out.images.metallic_roughness = gltf_image(model, pbr.metallicRoughnessTexture.index, path);
+  out.images.normal = gltf_image(model, m.normalTexture.index, path);
+  if (m.alphaMode == "MASK") out.images.alpha_cutoff = float(m.alphaCutoff);
+  if (m.alphaMode == "BLEND") out.images.alpha_cutoff = 0.5f;
+  return out;
+}
+
+template <int N>
+std::vector<Eigen::Matrix<double, N, 1>> gltf_attribute(const tinygltf::Model& model,
+                                                         const tinygltf::Primitive& primitive,
+                                                         const char* name, const std::string& path) {
+  std::vector<Eigen::Matrix<double, N, 1>> values;
+  const auto found = primitive.attributes.find(name);
+  if (found == primitive.attributes.end()) return values;
+  if (found->second < 0 || found->second >= int(model.accessors.size()))
+    fail(path, std::string(name) + " names a missing accessor");
+  const tinygltf::Accessor& accessor = model.accessors[found->second];
+  if (tinygltf::GetNumComponentsInType(accessor.type) < N)
+    fail(path, std::string(name) + " has too few components");
+  for (std::size_t i = 0; i < accessor.count; ++i) {
+    Eigen::Matrix<double, N, 1> value;
+    for (int c = 0; c < N; ++c) value[c] = accessor_value(model, accessor, i, c, path);
+    values.push_back(value);
+  }
+  return values;
+}
+
+Mesh load_gltf(const std::string& path, SemanticClass cls, Scene& scene, std::uint16_t fallback) {
+  const tinygltf::Model model = read_gltf(path);
+  std::map<int, std::uint16_t> materials;  // glTF material -> scene material
+  Imported out;
+  for_each_node(model, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
+    if (node.mesh < 0) return;
+    if (node.mesh >= int(model.meshes.size()))
+      fail(path, "node " + node.name + " refers to a mesh the file lacks");
+    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>(),
+                          normal_matrix = linear.inverse().transpose();
+    for (const tinygltf::Primitive& primitive : model.meshes[node.mesh].primitives) {
+      if (primitive.mode != -1 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
+      std::vector<V3> positions = gltf_attribute<3>(model, primitive, "POSITION", path),
+                      normals = gltf_attribute<3>(model, primitive, "NORMAL", path);
+      if (positions.empty()) fail(path, "a primitive has no POSITION");
+      for (V3& p : positions) p = (transform * p.homogeneous()).head<3>();
+      for (V3& n : normals) n = normal_matrix * n;
+      std::vector<Eigen::Vector4d> tangents = gltf_attribute<4>(model, primitive, "TANGENT", path);
+      for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
+      std::vector<int> indices;
+      if (primitive.indices >= 0) {
+        if (primitive.indices >= int(model.accessors.size()))
+          fail(path, "a primitive names missing indices");
+        const tinygltf::Accessor& accessor = model.accessors[primitive.indices];
+        for (std::size_t k = 0; k < accessor.count; ++k)
+          indices.push_back(int(accessor_value(model, accessor, k, 0, path)));
+      } else {
+        for (std::size_t k = 0; k < positions.size(); ++k) indices.push_back(int(k));
+      }
+      std::uint16_t material = fallback;
+      if (primitive.material >= int(model.materials.size()))
+        fail(path, "a primitive names a missing material");
+      if (primitive.material >= 0) {
+        auto [it, added] = materials.emplace(primitive.material, 0);
+        if (added)
+          it->second = add_material(scene, gltf_material(model, model.materials[primitive.material], path));
+        material = it->second;
+      }
+      add_part(out, positions, normals, gltf_attribute<2>(model, primitive, "TEXCOORD_0", path),
+               tangents, indices, material, cls, path);
+    }
+  });
+  return finished(std::move(out));
+}
+
+// ---- assimp ----------------------------------------------------------------------------------
+
+std::string assimp_texture(const aiScene* scene, const aiMaterial* material,
+                           std::initializer_list<aiTextureType> types, const std::string& path) {
+  for (aiTextureType type : types) {
+    aiString name;
+    if (material->GetTexture(type, 0, &name) != AI_SUCCESS) continue;
+    if (const aiTexture* embedded = scene->GetEmbeddedTexture(name.C_Str())) {
+      if (embedded->mHeight != 0) fail(path, "uncompressed embedded textures are not supported");
+      return cached_texture(reinterpret_cast<const unsigned char*>(embedded->pcData),
+                            embedded->mWidth,
+                            embedded->achFormatHint[0] ? embedded->achFormatHint : "png");
+    }
+    std::string file = name.C_Str();  // OBJ files from Windows write .\texture.jpg
+    std::replace(file.begin(), file.end(), '\\', '/');
+    return (fs::path(path).parent_path() / file).lexically_normal().string();
+  }
+  return {};
+}
+
+Material assimp_material(const aiScene* scene, const aiMaterial* m, const std::string& path) {
+  Material out;
+  aiColor4D colour;
+  if (m->Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS ||
+      m->Get(AI_MATKEY_COLOR_DIFFUSE, colour) == AI_SUCCESS)
+    out.albedo = Eigen::Vector3f(colour.r, colour.g, colour.b);
+  float metallic = 0, roughness = 0.5f;
+  m->Get(AI_MATKEY_METALLIC_FACTOR, metallic);
+  m->Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
+  out.kind = pbr_kind(metallic, roughness);
+  out.roughness = roughness;
+  out.images.base_color =
+      assimp_texture(scene, m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, path);
+  out.images.metallic_roughness = assimp_texture(
+      scene, m, {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS}, path);
+  out.images.normal = assimp_texture(scene, m, {aiTextureType_NORMALS}, path);
+  aiString alpha_mode;
+  if (m->Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS &&
+      std::string(alpha_mode.C_Str()) != "OPAQUE") {
+    float cutoff = 0.5f;
+    m->Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff);
+    out.images.alpha_cutoff = cutoff;
+  }
+  return out;
+}
+
+Mesh load_with_assimp(const std::string& path, SemanticClass cls, Scene& scene,
+                      std::uint16_t fallback) {
+  Assimp::Importer importer;
+  // uvs with their origin at the image's top-left corner, like glTF's and the texture lookups'
+  const aiScene* file = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+                aiProcess_CalcTangentSpace | aiProcess_FlipUVs);
+  if (!file || (file->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+    fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
+  std::map<unsigned, std::uint16_t> materials;
+  Imported out;
+  for (unsigned k = 0; k < file->mNumMeshes; ++k) {
+    const aiMesh* source = file->mMeshes[k];
+    std::vector<V3> positions, normals;
+    std::vector<Eigen::Vector2d> uvs;
+    std::vector<Eigen::Vector4d> tangents;
+    for (unsigned v = 0; v < source->mNumVertices; ++v) {
+      const aiVector3D& p = source->mVertices[v];
+      positions.emplace_back(p.x, p.y, p.z);
+      if (source->HasNormals())
+        normals.emplace_back(source->mNormals[v].x, source->mNormals[v].y, source->mNormals[v].z);
+      if (source->HasTextureCoords(0))
+        uvs.emplace_back(source->mTextureCoords[0][v].x, source->mTextureCoords[0][v].y);
+      if (source->HasTangentsAndBitangents() && source->HasNormals()) {
+        const V3 t(source->mTangents[v].x, source->mTangents[v].y, source->mTangents[v].z),
+            b(source->mBitangents[v].x, source->mBitangents[v].y, source->mBitangents[v].z);
+        tangents.emplace_back(t.x(), t.y(), t.z(), normals.back().cross(t).dot(b) < 0 ? -1 : 1);
+      }
+    }
+    std::vector<int> indices;
+    for (unsigned f = 0; f < source->mNumFaces; ++f)
+      if (source->mFaces[f].mNumIndices == 3)
+        for (int c = 0; c < 3; ++c) indices.push_back(int(source->mFaces[f].mIndices[c]));
+    std::uint16_t material = fallback;
+    if (source->mMaterialIndex < file->mNumMaterials) {
+      auto [it, added] = materials.emplace(source->mMaterialIndex, 0);
+      if (added)
+        it->second =
+            add_material(scene, assimp_material(file, file->mMaterials[source->mMaterialIndex], path));
+      material = it->second;
+    }
+    add_part(out, positions, normals, uvs, tangents, indices, material, cls, path);
+  }
+  return finished(std::move(out));
+}
+
+}  // namespace
+
+std::string texture_cache_dir() {
+  if (const char* dir = std::getenv("FLOWSCAPE_TEXTURE_CACHE"); dir && *dir) return dir;
+  return (fs::temp_directory_path() / "flowscape-textures").string();
+}
+
+Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
+                const Material& fallback) {
+  if (!fs::is_regular_file(path)) fail(path, "no such model file");
+  if (!(length > 0)) fail(path, "model length must be positive");
+  const std::string extension = fs::path(path).extension().string();
+  const std::uint16_t fallback_material = add_material(scene, fallback);
+  Mesh mesh = extension == ".gltf" || extension == ".glb"
+                  ? load_gltf(path, cls, scene, fallback_material)
+                  : load_with_assimp(path, cls, scene, fallback_material);
+  if (mesh.triangles.empty()) fail(path, "the model has no triangles");
+  Eigen::Vector3f lo = mesh.vertices[0], hi = mesh.vertices[0];
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    if (!v.allFinite()) fail(path, "a vertex is not finite");
+    lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  }
+  if (!(hi.x() > lo.x())) fail(path, "the model has no extent along its forward axis");
+  const float scale = float(length / (hi.x() - lo.x()));
+  const Eigen::Vector3f centre((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2, lo.z());
+  for (Eigen::Vector3f& v : mesh.vertices) v = (v - centre) * scale;
+  return mesh;
+}
+
+}  // namespace flowscape
