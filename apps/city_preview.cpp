@@ -22,7 +22,8 @@ namespace {
 
 struct Options {
   std::string out = "city_maps.png", gltf_dir;
-  int height = 160, spp = 8, vehicles = 60, pedestrians = 60, ego_start = 37;
+  int height = 160, vehicles = 60, pedestrians = 60, ego_start = 37;
+  ReleaseConfig color;  // spp, indirect_spp, denoise: as a release renders colour
   std::uint64_t seed = 0;
   double time = 1.0;
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
@@ -34,14 +35,13 @@ struct Options {
 // nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence =
-      make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2,
-                     o.models});
+  const Sequence sequence = make_sequence(
+      {map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames);
-  const Image<float> color = renderer.color(erp, frames, {o.spp, 4, sequence.color_seed(frame)});
+  const Image<float> color = release_color(o.color, sequence, renderer, erp, frame, gt);
   Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
   cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
   cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
@@ -67,7 +67,16 @@ int main(int argc, char** argv) {
   app.add_option("-o,--out", o.out, "contact sheet PNG");
   app.add_option("--height", o.height, "ERP height in pixels (width = 2 x height)")
       ->check(CLI::Range(16, 2048));
-  app.add_option("--spp", o.spp, "path-traced samples per pixel")->check(CLI::Range(1, 4096));
+  app.add_option("--spp", o.color.spp, "path-traced samples per pixel")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--indirect-spp", o.color.indirect_spp,
+                 "of those, how many gather indirect light (more than --spp: all)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--denoise", o.color.denoise, "atrous (as a release) or none: the raw path tracer")
+      ->check(CLI::IsMember({"atrous", "none"}))
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "sequence seed (city, traffic, weather variant, noise)");
   app.add_option("--vehicles", o.vehicles, "vehicles per map")->check(CLI::Range(0, 200));
   app.add_option("--pedestrians", o.pedestrians, "pedestrians per map")->check(CLI::Range(0, 200));

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     return app
         .add_option_function<decltype(default_value)>(
             flags, [&given, key](const auto& value) { given[key] = value; }, help)
-        ->default_str(std::to_string(default_value));
+        ->default_str((std::ostringstream() << default_value).str());
   };
   auto* out_option = app.add_option("-o,--out", out, "release folder");
   app.add_option("--config", config_file,
@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
   option("--resolution", "resolution", defaults.height, "ERP height (width = 2 x height)");
   option("--face-size", "face_size", defaults.face_size, "cube face size in pixels");
   option("--spp", "spp", defaults.spp, "path-traced samples per pixel");
+  option("--indirect-spp", "indirect_spp", defaults.indirect_spp,
+         "of those, how many gather indirect light (more than --spp: all)");
+  option("--denoise", "denoise", defaults.denoise,
+         "atrous: denoise the colour with its feature layers; none: the raw path tracer");
   app.add_option("--weather", weathers,
                  "comma-separated weather presets cycled over each map's sequences (default "
                  "sunny x5,cloud,fog,rain)");

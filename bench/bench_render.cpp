@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
   const CubeFrame cube = render_cube(renderer, F, frames, &options);
   const double render_seconds = seconds_since(start);
   start = std::chrono::steady_clock::now();
-  resample_bilinear(map.sampling, cube.color);
+  resample_bilinear(map.sampling, raw_color(cube.color));
   cube_to_erp_flow(map, {cube.truth.flow.view(), cube.truth.instance.view()}, FlowMode::Wrap360);
   resample_nearest(map.sampling, cube.truth.semantic);
   const double stitch_seconds = seconds_since(start);

@@ -38,7 +38,7 @@ int ImageTextures::open(const std::string& path) {
     throw FileError(path, "cannot read texture: " + OIIO::geterror());
   if (!system_) {
     system_ = OIIO::TextureSystem::create(false);
-    system_->attribute("automip", 1);  // PNG and JPEG files get their mip-maps in memory
+    system_->attribute("automip", 1);            // PNG and JPEG files get their mip-maps in memory
     system_->attribute("unassociatedalpha", 1);  // colours as stored, not multiplied by alpha
   }
   paths_.push_back(path);

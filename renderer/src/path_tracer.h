@@ -6,8 +6,8 @@
 
 namespace flowscape {
 
-Image<float> path_trace(EmbreeScene& embree, const ImageTextures& images,
-                        const Projection& projection, const FramePair& frames,
-                        const RenderOptions& options, RenderStats* stats);
+ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
+                       const Projection& projection, const FramePair& frames,
+                       const RenderOptions& options, RenderStats* stats);
 
 }  // namespace flowscape

@@ -30,8 +30,11 @@ std::optional<Vec2> Projection::project(const Vec3& direction) const {
               height / 2.0 + focal * camera.y() / camera.z());
 }
 
-double Projection::pixel_spread() const {
-  return kind == Kind::Equirectangular ? 2 * kPi / width : 1 / focal;
+double Projection::pixel_spread(Vec2 pixel) const {
+  if (kind == Kind::Equirectangular) return 2 * kPi / width;
+  const Vec2 offset = (pixel - Vec2(width / 2.0, height / 2.0)) / focal;
+  const double cos_axis = 1 / std::sqrt(1 + offset.squaredNorm());
+  return std::pow(cos_axis, 1.5) / focal;
 }
 
 namespace {

@@ -21,8 +21,20 @@ struct Renderer::Impl {
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Renderer::~Renderer() = default;
 
+Image<float> raw_color(const ColorLayers& layers) {
+  Image<float> sum = layers.direct;
+  for (const Image<float>* layer : {&layers.indirect, &layers.specular, &layers.other})
+    for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += layer->data[i];
+  return sum;
+}
+
 Image<float> Renderer::color(const Projection& projection, const FramePair& frames,
                              const RenderOptions& options, RenderStats* stats) {
+  return raw_color(color_layers(projection, frames, options, stats));
+}
+
+ColorLayers Renderer::color_layers(const Projection& projection, const FramePair& frames,
+                                   const RenderOptions& options, RenderStats* stats) {
   return path_trace(impl_->embree, impl_->images, projection, frames, options, stats);
 }
 
@@ -105,8 +117,13 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames
     put_face(all.flow, face, gt.flow), put_face(all.semantic, face, gt.semantic);
     put_face(all.instance, face, gt.instance), put_face(all.depth, face, gt.depth);
     put_face(all.valid, face, gt.valid);
-    if (color_options)
-      put_face(cube.color, face, renderer.color(projection, frames, *color_options));
+    if (!color_options) continue;
+    ColorLayers layers = renderer.color_layers(projection, frames, *color_options);
+    ColorLayers& c = cube.color;
+    put_face(c.direct, face, layers.direct), put_face(c.indirect, face, layers.indirect);
+    put_face(c.specular, face, layers.specular), put_face(c.other, face, layers.other);
+    put_face(c.albedo, face, layers.albedo), put_face(c.normal, face, layers.normal);
+    put_face(c.variance, face, layers.variance);
   }
   return cube;
 }

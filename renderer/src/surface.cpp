@@ -118,7 +118,7 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
   s.geometric = (rotation * hit.normal.cast<double>()).normalized();
   s.front = s.geometric.dot(dir) < 0;
   if (!s.front) s.geometric = -s.geometric;
-  s.normal = s.geometric;
+  s.normal = s.smooth = s.geometric;
   s.position = origin + hit.distance * dir;
   s.material = &m;
   s.albedo = look ? look->albedo : m.albedo.cast<double>();
@@ -129,6 +129,7 @@ Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin
     const Vec3 n = rotation * interpolate(mesh.normals, tri, hit.u, hit.v).cast<double>();
     set_normal(s, s.front ? n : -n);
   }
+  s.smooth = s.normal;
   if (!look || (look->slope.isZero() && look->mapped.isZero())) return s;
   const UvFrame frame = uv_frame(mesh, tri);
   Vec3 tangent = (rotation * frame.dpdu).normalized(),

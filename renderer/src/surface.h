@@ -12,6 +12,7 @@ struct Surface {
   Vec3 position;
   Vec3 geometric;  // unit geometric normal, facing the incoming ray
   Vec3 normal;     // unit shading normal (interpolated, bumped, normal-mapped), on the same side
+  Vec3 smooth;     // the interpolated normal before textures tilt it
   bool front;      // the ray arrives from the side the geometric normal points to
   const Material* material;
   Rgb albedo;

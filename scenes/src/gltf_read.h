@@ -19,9 +19,8 @@ inline Vec3 to_y_up(const Eigen::Vector3f& p) { return {p.y(), p.z(), p.x()}; }
 tinygltf::Model read_gltf(const std::string& path);
 
 // Every node of the default scene (or every root when there is none) with its world transform.
-void for_each_node(
-    const tinygltf::Model& model,
-    const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit);
+void for_each_node(const tinygltf::Model& model,
+                   const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit);
 
 // Component `component` of element `i` of an accessor, checked against its buffer; normalized
 // integers become [0, 1].

@@ -30,8 +30,7 @@ std::string cached_texture(const unsigned char* bytes, std::size_t size, const s
   char name[32];
   std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(hash));
   const fs::path path = fs::path(texture_cache_dir()) / (name + ("." + type));
-  if (!fs::exists(path))
-    write_text(path, std::string(reinterpret_cast<const char*>(bytes), size));
+  if (!fs::exists(path)) write_text(path, std::string(reinterpret_cast<const char*>(bytes), size));
   return path.string();
 }
 
@@ -66,9 +65,9 @@ void add_part(Imported& out, const std::vector<V3>& positions, const std::vector
   out.tangents = out.tangents && tangents.size() == positions.size();
   for (std::size_t v = 0; v < positions.size(); ++v) {
     out.mesh.vertices.push_back(from_y_up(positions[v]).cast<float>());
-    out.mesh.normals.push_back(v < normals.size()
-                                   ? Eigen::Vector3f(from_y_up(normals[v]).normalized().cast<float>())
-                                   : Eigen::Vector3f::Zero());
+    out.mesh.normals.push_back(
+        v < normals.size() ? Eigen::Vector3f(from_y_up(normals[v]).normalized().cast<float>())
+                           : Eigen::Vector3f::Zero());
     out.mesh.uvs.push_back(v < uvs.size() ? Eigen::Vector2f(uvs[v].cast<float>())
                                           : Eigen::Vector2f::Zero());
     const Eigen::Vector4d t = v < tangents.size() ? tangents[v] : Eigen::Vector4d::Zero();
@@ -80,7 +79,8 @@ void add_part(Imported& out, const std::vector<V3>& positions, const std::vector
     for (int c = 0; c < 3; ++c)
       if (indices[k + c] < 0 || std::size_t(indices[k + c]) >= positions.size())
         fail(path, "triangle index out of range");
-    out.mesh.triangles.emplace_back(base + indices[k], base + indices[k + 1], base + indices[k + 2]);
+    out.mesh.triangles.emplace_back(base + indices[k], base + indices[k + 1],
+                                    base + indices[k + 2]);
     out.mesh.classes.push_back(cls);
     out.mesh.materials.push_back(material);
   }
@@ -136,8 +136,8 @@ Material gltf_material(const tinygltf::Model& model, const tinygltf::Material& m
 
 template <int N>
 std::vector<Eigen::Matrix<double, N, 1>> gltf_attribute(const tinygltf::Model& model,
-                                                         const tinygltf::Primitive& primitive,
-                                                         const char* name, const std::string& path) {
+                                                        const tinygltf::Primitive& primitive,
+                                                        const char* name, const std::string& path) {
   std::vector<Eigen::Matrix<double, N, 1>> values;
   const auto found = primitive.attributes.find(name);
   if (found == primitive.attributes.end()) return values;
@@ -189,7 +189,8 @@ Mesh load_gltf(const std::string& path, SemanticClass cls, Scene& scene, std::ui
       if (primitive.material >= 0) {
         auto [it, added] = materials.emplace(primitive.material, 0);
         if (added)
-          it->second = add_material(scene, gltf_material(model, model.materials[primitive.material], path));
+          it->second =
+              add_material(scene, gltf_material(model, model.materials[primitive.material], path));
         material = it->second;
       }
       add_part(out, positions, normals, gltf_attribute<2>(model, primitive, "TEXCOORD_0", path),
@@ -232,8 +233,8 @@ Material assimp_material(const aiScene* scene, const aiMaterial* m, const std::s
   out.roughness = roughness;
   out.images.base_color =
       assimp_texture(scene, m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, path);
-  out.images.metallic_roughness = assimp_texture(
-      scene, m, {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS}, path);
+  out.images.metallic_roughness =
+      assimp_texture(scene, m, {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS}, path);
   out.images.normal = assimp_texture(scene, m, {aiTextureType_NORMALS}, path);
   aiString alpha_mode;
   if (m->Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS &&
@@ -250,8 +251,8 @@ Mesh load_with_assimp(const std::string& path, SemanticClass cls, Scene& scene,
   Assimp::Importer importer;
   // uvs with their origin at the image's top-left corner, like glTF's and the texture lookups'
   const aiScene* file = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                aiProcess_CalcTangentSpace | aiProcess_FlipUVs);
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                aiProcess_PreTransformVertices | aiProcess_CalcTangentSpace | aiProcess_FlipUVs);
   if (!file || (file->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
   std::map<unsigned, std::uint16_t> materials;
@@ -282,8 +283,8 @@ Mesh load_with_assimp(const std::string& path, SemanticClass cls, Scene& scene,
     if (source->mMaterialIndex < file->mNumMaterials) {
       auto [it, added] = materials.emplace(source->mMaterialIndex, 0);
       if (added)
-        it->second =
-            add_material(scene, assimp_material(file, file->mMaterials[source->mMaterialIndex], path));
+        it->second = add_material(
+            scene, assimp_material(file, file->mMaterials[source->mMaterialIndex], path));
       material = it->second;
     }
     add_part(out, positions, normals, uvs, tangents, indices, material, cls, path);

@@ -1,8 +1,9 @@
 // Whole scenes to glTF with their classes, and back.
+#include "flowscape/scenes/model_io.h"
+
 #include <filesystem>
 #include <map>
 
-#include "flowscape/scenes/model_io.h"
 #include "gltf_read.h"
 
 namespace flowscape {

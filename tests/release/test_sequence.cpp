@@ -6,7 +6,7 @@
 using namespace flowscape;
 
 TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's poses then") {
-  const Sequence s = make_sequence({3, "fog", 77, 6, 4, 12, 10});
+  const Sequence s = make_sequence({3, "fog", 77, 6, 4, 12, 10, {}});
   for (int f : {0, 4, 9}) {
     const FramePair pair = s.frame_pair(f);
     CHECK(pair.time == Approx(f / 30.0));
@@ -21,8 +21,8 @@ TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's
 }
 
 TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json records") {
-  const Sequence a = make_sequence({0, "fog", 1, 2, 2, 0, 3}),
-                 b = make_sequence({0, "fog", 2, 2, 2, 0, 3});
+  const Sequence a = make_sequence({0, "fog", 1, 2, 2, 0, 3, {}}),
+                 b = make_sequence({0, "fog", 2, 2, 2, 0, 3, {}});
   CHECK(to_json(a.weather) == to_json(randomized(weather_preset("fog"), 1)));
   CHECK(to_json(a.weather) != to_json(b.weather));
   CHECK(a.city.scene.environment.fog.density > 0);

@@ -31,12 +31,12 @@ fs::path write_quad(const fs::path& dir, const std::string& png, bool mask) {
     return nlohmann::json{{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}};
   };
   const auto accessor = [](int view, int count, int type, const char* kind) {
-    return nlohmann::json{{"bufferView", view}, {"componentType", type}, {"count", count}, {"type", kind}};
+    return nlohmann::json{
+        {"bufferView", view}, {"componentType", type}, {"count", count}, {"type", kind}};
   };
-  nlohmann::json material = {{"pbrMetallicRoughness",
-                              {{"baseColorTexture", {{"index", 0}}},
-                               {"metallicFactor", 0.0},
-                               {"roughnessFactor", 1.0}}}};
+  nlohmann::json material = {
+      {"pbrMetallicRoughness",
+       {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}};
   if (mask) material["alphaMode"] = "MASK", material["alphaCutoff"] = 0.5;
   nlohmann::json accessors = {accessor(0, 4, 5126, "VEC3"), accessor(1, 4, 5126, "VEC3"),
                               accessor(2, 4, 5126, "VEC2"), accessor(3, 6, 5123, "SCALAR")};
@@ -88,7 +88,8 @@ FramePair facing_quad() {
 
 // Where the centre of pixel (x, y) of a W x W pinhole of 60 degrees looks on the quad, as uv:
 // the ray (1, -a, -b) in the rig (x forward, y left, z up) turned by the rig's 90 degree yaw to
-// (a, 1, -b) in the world, from (0, -3, 1) to the plane y = 0, and u = (x + 1) / 2, v = (2 - z) / 2.
+// (a, 1, -b) in the world, from (0, -3, 1) to the plane y = 0, and u = (x + 1) / 2, v = (2 - z)
+// / 2.
 Vec2 quad_uv(int x, int y, int W) {
   const double f = W / 2.0 / std::tan(kPi / 6);
   const double a = (x + 0.5 - W / 2.0) / f, b = (y + 0.5 - W / 2.0) / f;

@@ -28,13 +28,14 @@ TEST_CASE("a glTF box keeps its uvs, normals and textured material, wherever the
   setenv("FLOWSCAPE_TEXTURE_CACHE", cache.path.c_str(), 1);
   const fs::path logo = kModels / "glTF2/BoxTextured-glTF/CesiumLogoFlat.png";
   REQUIRE(fs::exists(logo));
-  for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf",           // an image file beside it
-                           "BoxTextured-glTF-Binary/BoxTextured.glb",      // in the binary buffer
+  for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf",        // an image file beside it
+                           "BoxTextured-glTF-Binary/BoxTextured.glb",  // in the binary buffer
                            "BoxTextured-glTF-Embedded/BoxTextured.gltf"})  // a data: uri
   {
     INFO(file);
     Scene scene;
-    const Mesh box = load_model((kModels / "glTF2" / file).string(), SemanticClass::Vehicles, 2, scene);
+    const Mesh box =
+        load_model((kModels / "glTF2" / file).string(), SemanticClass::Vehicles, 2, scene);
     CHECK(box.triangles.size() == 12);
     CHECK(box.vertices.size() == 24);  // glTF stores four corners per side, for their uvs
     REQUIRE((box.uvs.size() == 24 && box.normals.size() == 24));

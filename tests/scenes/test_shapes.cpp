@@ -27,7 +27,8 @@ TEST_CASE("a box has four vertices per side with the side's normal and uvs in me
   REQUIRE((mesh.normals.size() == 24 && mesh.uvs.size() == 24));
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Eigen::Vector3i& tri = mesh.triangles[t];
-    const Eigen::Vector3f a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]], c = mesh.vertices[tri[2]];
+    const Eigen::Vector3f a = mesh.vertices[tri[0]], b = mesh.vertices[tri[1]],
+                          c = mesh.vertices[tri[2]];
     const Eigen::Vector3f face = (b - a).cross(c - a).normalized();
     for (int k = 0; k < 3; ++k) REQUIRE((mesh.normals[tri[k]] - face).norm() < 1e-6);
     // outward: the normal points away from the box's centre (2, 1, 1.5)

@@ -13,8 +13,10 @@ TEST_CASE("value noise: in [-1, 1], its gradient is the derivative, lattice poin
     const Noise n = value_noise(p, 7);
     largest = std::max(largest, std::abs(n.value));
     const double h = 1e-6;
-    const double dx = (value_noise(p + Vec2(h, 0), 7).value - value_noise(p - Vec2(h, 0), 7).value) / (2 * h);
-    const double dy = (value_noise(p + Vec2(0, h), 7).value - value_noise(p - Vec2(0, h), 7).value) / (2 * h);
+    const double dx =
+        (value_noise(p + Vec2(h, 0), 7).value - value_noise(p - Vec2(h, 0), 7).value) / (2 * h);
+    const double dy =
+        (value_noise(p + Vec2(0, h), 7).value - value_noise(p - Vec2(0, h), 7).value) / (2 * h);
     REQUIRE(n.gradient.x() == Approx(dx).margin(1e-5));
     REQUIRE(n.gradient.y() == Approx(dy).margin(1e-5));
   }
@@ -58,8 +60,8 @@ TEST_CASE("a bond's mortar averages to its joints' share and bricks are numbered
   const Bond wide = bond({3.21, 1.7}, {0.25, 0.075}, 0.012, 0.5, 0.75);  // 3 x 10 bricks
   CHECK(wide.mortar == Approx(1 - (1 - 0.012 / 0.25) * (1 - 0.012 / 0.075)).epsilon(0.02));
   const Bond a = bond({0.1, 0.03}, {0.25, 0.075}, 0.012, 0.5, 0);
-  const Bond b = bond({0.2, 0.03}, {0.25, 0.075}, 0.012, 0.5, 0);    // same brick
-  const Bond c = bond({0.1, 0.1}, {0.25, 0.075}, 0.012, 0.5, 0);     // the next course
+  const Bond b = bond({0.2, 0.03}, {0.25, 0.075}, 0.012, 0.5, 0);  // same brick
+  const Bond c = bond({0.1, 0.1}, {0.25, 0.075}, 0.012, 0.5, 0);   // the next course
   CHECK(a.unit == b.unit);
   CHECK(a.unit != c.unit);
   CHECK(a.mortar == 0);

@@ -84,11 +84,12 @@ TEST_CASE("the four weathers change colour only and each in its own way") {
   CHECK(far_slope < 0.5 * near_slope);
   // rain: darker than a sunny day
   CHECK(mean_luminance(rain) < 0.7 * mean_luminance(sunny));
-  // rain streaks: the colour-only streaks and puddles change pixels the ground truth never sees
+  // rain streaks: the colour-only streaks (faint: opacity 0.13) and puddles change pixels the
+  // ground truth never sees
   const WeatherFrame dry = render_city(weather_preset("rain"), true);
   int changed = 0;
   for (std::size_t i = 0; i < dry.truth.depth.data.size(); ++i)
-    changed += std::abs(luminance(rain.color, i) - luminance(dry.color, i)) > 0.03;
+    changed += std::abs(luminance(rain.color, i) - luminance(dry.color, i)) > 0.01;
   CHECK(changed > int(dry.truth.depth.data.size() / 300));
   CHECK(rain.truth.semantic.data == dry.truth.semantic.data);
 }

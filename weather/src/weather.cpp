@@ -78,7 +78,9 @@ Actor rain_actor(const Weather& w, Random& random, const PoseTrack& rig, Scene& 
   Material streak;
   streak.kind = Material::Kind::Streak;
   streak.emission = (scene.environment.sky_horizon * 1.4f).cwiseMax(0.05f);
-  streak.opacity = float(0.3 + 0.4 * w.precipitation);
+  // faint, as a camera's exposure smears a drop over its streak (opaque streaks moving across the
+  // scene would dominate the frame-to-frame differences the flow cannot explain)
+  streak.opacity = float(0.05 + 0.1 * w.precipitation);
   streaks.materials.assign(streaks.triangles.size(), add_material(scene, streak));
   Actor actor{std::uint16_t(scene.actors.size() + 1), {}, [rig](double t) {
                 const V3 at = rig(t).translation();
@@ -133,7 +135,8 @@ Actor puddle_actor(const Weather& w, Random& random, Scene& scene) {
   return actor;
 }
 
-// Wet ground: darker and, above a little wetness, under a clear coat like a film of water.
+// Wet ground: darker and, above a little wetness, under a clear coat like a film of water: a rough
+// film on the rough asphalt (blurred reflections), mirror-like only in the puddles.
 void wet_materials(const Weather& w, Scene& scene) {
   std::vector<bool> ground(scene.materials.size(), false);
   for (std::size_t t = 0; t < scene.world.triangles.size(); ++t) {
@@ -148,7 +151,7 @@ void wet_materials(const Weather& w, Scene& scene) {
     material.albedo *= float(1 - 0.45 * w.wetness);  // patterns modulate the darker base
     if (w.wetness > 0.3 && material.kind == Material::Kind::Diffuse) {
       material.kind = Material::Kind::Glossy;
-      material.roughness = float(0.02 + 0.15 * (1 - w.wetness));
+      material.roughness = float(0.1 + 0.2 * (1 - w.wetness));
     }
   }
 }

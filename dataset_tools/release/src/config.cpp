@@ -22,7 +22,9 @@ template <class Config, class Visit>
 void for_each_field(Config& c, Visit&& visit) {
   visit("maps", c.maps), visit("sequences_per_map", c.sequences_per_map);
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
-  visit("spp", c.spp), visit("max_bounces", c.max_bounces), visit("weathers", c.weathers);
+  visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
+  visit("weathers", c.weathers);
+  visit("denoise", c.denoise);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("cube", c.cube), visit("models", c.models);
 }
@@ -47,7 +49,9 @@ void validate(const ReleaseConfig& c) {
   require(c.height >= 8 && c.height <= 8192, "resolution (ERP height) must be in 8..8192");
   require(c.face_size >= 4 && c.face_size <= 8192, "face_size must be in 4..8192");
   require(c.spp >= 1 && c.spp <= 65536, "spp must be in 1..65536");
+  require(c.indirect_spp >= 1 && c.indirect_spp <= 65536, "indirect_spp must be in 1..65536");
   require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
+  require(c.denoise == "atrous" || c.denoise == "none", "denoise must be atrous or none");
   require(!c.weathers.empty(), "weathers must not be empty");
   for (const std::string& w : c.weathers) weather_preset(w);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,

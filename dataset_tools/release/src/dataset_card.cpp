@@ -1,5 +1,6 @@
 #include "flowscape/release/dataset_card.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
@@ -44,7 +45,11 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c) {
     md << "- cube: six 90-degree faces (front right back left up down), " << c.face_size << " x "
        << c.face_size << ", focal " << c.face_size / 2.0
        << " px; the ERP colour is stitched from them\n";
-  md << "- colour path traced with " << c.spp << " samples per pixel\n";
+  md << "- colour path traced with " << c.spp << " samples per pixel ("
+     << std::min(c.indirect_spp, c.spp) << " of them gathering indirect light), "
+     << (c.denoise == "none" ? "not denoised"
+                             : "denoised (a-trous, guided by albedo, normal, depth, instance)")
+     << "\n";
   for (const OutputKind& kind : kOutputKinds)
     md << "- " << kind.name << ": " << kind.description
        << (kind.pairs_only ? " (every frame but the last)" : "") << "\n";

@@ -1,11 +1,14 @@
 #include "flowscape/release/sequence.h"
 
+#include <algorithm>
+
 #include "flowscape/core/random.h"
+#include "flowscape/renderer/denoise.h"
 
 namespace flowscape {
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan) {
-  return {plan.map,           plan.weather,         plan.seed,    config.vehicles,
+  return {plan.map,           plan.weather,         plan.seed,     config.vehicles,
           config.pedestrians, int(plan.seed % 100), config.frames, config.models};
 }
 
@@ -15,6 +18,22 @@ FramePair Sequence::frame_pair(int frame) const {
 }
 
 std::uint64_t Sequence::color_seed(int frame) const { return derived_seed(spec.seed, frame, 1); }
+
+RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) const {
+  RenderOptions options{config.spp, config.max_bounces, color_seed(frame)};
+  options.indirect_samples = std::min(config.indirect_spp, config.spp);
+  return options;
+}
+
+Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, int frame,
+                           const GroundTruth& truth) {
+  const FramePair pair = sequence.frame_pair(frame);
+  const ColorLayers layers =
+      renderer.color_layers(camera, pair, sequence.color_options(config, frame));
+  if (config.denoise == "none") return raw_color(layers);
+  return denoise(layers, {&camera, truth.depth.view(), truth.instance.view()});
+}
 
 Sequence make_sequence(const SequenceSpec& spec) {
   CityConfig city_config;

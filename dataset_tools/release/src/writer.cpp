@@ -13,6 +13,7 @@
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/renderer/denoise.h"
 #include "flowscape/stitcher/stitch.h"
 
 namespace flowscape {
@@ -65,24 +66,28 @@ void write_view(const fs::path& dir, bool cube, int frame, int frames, const Vie
   }
 }
 
-// The ERP colour is stitched from the cube faces' colour when there are faces, else rendered
-// directly; the ERP ground truth is always ray cast directly (exact, and cheap next to colour).
+// The ERP colour is stitched from the cube faces' (denoised face by face) when there are faces,
+// else rendered and denoised directly; the ERP ground truth is always ray cast directly (exact,
+// and cheap next to colour).
 void write_frame(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
                  const CubeToErp* map, const fs::path& dir, int frame) {
   const FramePair pair = sequence.frame_pair(frame);
-  const RenderOptions options{config.spp, config.max_bounces, sequence.color_seed(frame)};
   const Projection erp = Projection::equirectangular(config.height);
+  GroundTruth truth = renderer.ground_truth(erp, pair);
   Image<float> erp_color;
   if (map) {
+    const RenderOptions options = sequence.color_options(config, frame);
     CubeFrame cube = render_cube(renderer, config.face_size, pair, &options);
-    erp_color = resample_bilinear(map->sampling, cube.color);
+    const Image<float> color =
+        config.denoise == "none" ? raw_color(cube.color) : denoise_cube(cube);
+    erp_color = resample_bilinear(map->sampling, color);
     write_view(dir, true, frame, config.frames,
-               view_images(std::move(cube.truth), linear_to_srgb8(cube.color.view())));
+               view_images(std::move(cube.truth), linear_to_srgb8(color.view())));
   } else {
-    erp_color = renderer.color(erp, pair, options);
+    erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
   write_view(dir, false, frame, config.frames,
-             view_images(renderer.ground_truth(erp, pair), linear_to_srgb8(erp_color.view())));
+             view_images(std::move(truth), linear_to_srgb8(erp_color.view())));
 }
 
 bool all_exist(const fs::path& dir, const std::vector<fs::path>& files) {

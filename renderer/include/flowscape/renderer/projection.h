@@ -23,9 +23,12 @@ struct Projection {
   Vec3 ray(Vec2 pixel) const;
   // Continuous pixel position of a rig-frame direction; nullopt behind a pinhole.
   std::optional<Vec2> project(const Vec3& direction) const;
-  // The angle one pixel spans (at the image centre of a pinhole, on the equator of an ERP): how
-  // fast a camera ray's footprint grows with distance.
-  double pixel_spread() const;
+  // The angle the pixel at `pixel` spans, the square root of its solid angle: how fast a camera
+  // ray's footprint grows with distance. A pinhole pixel at angle a off the axis spans
+  // cos(a)^1.5 / focal, so its footprint on a plane parallel to the image is depth / focal
+  // wherever it is in the image. An ERP pixel spans 2 pi / width across its long side (its width
+  // on the equator, its height everywhere), so textures never alias near the poles.
+  double pixel_spread(Vec2 pixel) const;
 };
 
 // Rays through many points of one pixel (the samples of a path tracer). The ERP form takes the sin

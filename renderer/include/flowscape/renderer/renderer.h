@@ -26,13 +26,32 @@ struct GroundTruth {
 
 struct RenderOptions {
   int samples_per_pixel = 16;
-  int max_bounces = 4;  // Russian roulette may end paths earlier after the third bounce
-  std::uint64_t seed =
-      0;  // with the pixel, the sample and the dimension, seeds every random number
+  int max_bounces = 4;     // Russian roulette may end paths earlier after the third bounce
+  std::uint64_t seed = 0;  // with the pixel, the sample and the dimension: every random number
   // Procedural patterns and image maps; false: every material's plain albedo and roughness (for
   // comparisons; alpha masks still cut holes: they are geometry).
   bool textures = true;
+  // How many of a pixel's samples go on past a diffuse first surface (the costly, incoherent
+  // bounces that gather its indirect light), weighted to stand for all; 0: every sample. The rest
+  // still bring the camera ray, the sun's direct light, the specular chains and the features.
+  int indirect_samples = 0;
 };
+
+// A colour frame split the way a denoiser needs it (linear RGB, each averaged over the pixel's
+// samples). The first surface is the first opaque one a camera ray meets (rain streaks are passed).
+struct ColorLayers {
+  Image<float> direct;    // the sun's light the first surface reflects diffusely (sharp shadows)
+  Image<float> indirect;  // all other light the first surface reflects diffusely (the noisy part)
+  Image<float> specular;  // light from a specular event at the first surface (coats, metal, glass)
+  Image<float> other;     // light met before it: sky, sun disc, emission, fog, rain streaks
+  Image<float> albedo;    // the first surface's albedo, weighted as its diffuse light is
+  Image<float> normal;    // the first surface's shading normal, world frame, summed over samples
+  // The variance of the mean luminance of direct, indirect and specular (3 channels): how much of
+  // each is noise, for the denoiser's edge-stopping.
+  Image<float> variance;
+};
+// direct + indirect + specular + other: the raw colour.
+Image<float> raw_color(const ColorLayers& layers);
 
 struct RenderStats {
   std::uint64_t rays = 0;  // camera, bounce and shadow rays traced
@@ -51,10 +70,13 @@ class Renderer {
                            FlowMode mode = FlowMode::Wrap360);
 
   // Linear HDR radiance (RGB) at frames.time, path traced: Lambertian, clear-coat, metal, glass
-  // and emissive surfaces, sun (sampled directly) and sky, Russian roulette, a low-discrepancy
-  // sampler (R2 per dimension pair, shifted per pixel). The same bytes for any thread count.
+  // and emissive surfaces, sun (sampled directly) and sky, fog integrated in closed form, Russian
+  // roulette, Owen-scrambled Sobol samples (docs/renderer.md). The same bytes for any thread count.
   Image<float> color(const Projection& projection, const FramePair& frames,
                      const RenderOptions& options = {}, RenderStats* stats = nullptr);
+  // The same estimate in layers (raw_color(color_layers(...)) == color(...)).
+  ColorLayers color_layers(const Projection& projection, const FramePair& frames,
+                           const RenderOptions& options = {}, RenderStats* stats = nullptr);
 
  private:
   struct Impl;
@@ -64,7 +86,7 @@ class Renderer {
 // The cube rig: the six 90-degree faces at one optical centre, rendered for the same frame pair and
 // stacked into N x 6N images in kFaces order (geometry.h's face_view; the layout stitch.h takes).
 struct CubeFrame {
-  Image<float> color;  // linear RGB; empty when not asked for
+  ColorLayers color;  // empty when not asked for
   GroundTruth truth;
 };
 CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,

@@ -33,10 +33,20 @@ struct Sequence {
   static double time(int frame) { return frame / kFrameRate; }
   FramePair frame_pair(int frame) const;      // frame -> frame + 1
   std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
+  // The path tracer's settings for this frame: config.spp samples, indirect_spp of them (at most
+  // all) gathering indirect light, color_seed(frame).
+  RenderOptions color_options(const ReleaseConfig& config, int frame) const;
 };
 // The city is built and the weather applied (sky, fog, wet materials, rain streaks, puddles).
 // A Renderer keeps a reference to sequence.city.scene: do not move the Sequence while one lives.
 Sequence make_sequence(const SequenceSpec& spec);
+
+// The colour of one camera's view of a frame as a release renders it without cube faces: path
+// traced with color_options and denoised with the view's ground truth (unless config.denoise is
+// "none").
+Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, int frame,
+                           const GroundTruth& truth);
 
 // meta.json of a planned sequence of a release.
 SequenceMeta sequence_meta(const Sequence& sequence, const SequencePlan& plan,
