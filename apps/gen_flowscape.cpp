@@ -69,13 +69,16 @@ int main(int argc, char** argv) {
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
                  "glTF or anything assimp reads, textures included; repeat for several kinds "
                  "(replaces the config file's \"models\")");
-  bool no_cube = false, check = false;
+  bool no_cube = false, check = false, force = false;
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
   app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
   app.add_flag("--demo", sources.demo,
                "a small release in demo/ (1 map, 2 sequences of 4 frames, 128 x 256, 8 spp, sunny "
                "and rain) unless options say otherwise");
+  app.add_flag("--force", force,
+               "the folder holds a release made with another config: delete its files "
+               "(sequences/, manifests, card, config.json, manifest.json) and start over");
   app.add_flag("--check", check, "only check the options and print the plan; write nothing");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -93,7 +96,7 @@ int main(int argc, char** argv) {
                   plan_sequences(c).size(), c.frames, c.shard, c.shards, shard_plans(c).size());
       return 0;
     }
-    const ReleaseWritten written = write_release(c, out);
+    const ReleaseWritten written = write_release(c, out, force);
     std::printf("%s: %zu sequences, %zu frames, %zu files\n", written.manifest.c_str(),
                 written.sequences, written.frames, written.files);
     return 0;

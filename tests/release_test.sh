@@ -118,7 +118,7 @@ check "--model without a kind" fails_clearly "--model wants KIND=FILE" "$bin/gen
 check "--model of a missing file" fails_clearly "nope.glb: no such model file" "$bin/gen_flowscape" --model car=nope.glb --out "$work/x"
 check "bad shard" fails_clearly "shard K/N needs 0 <= K < N" "$bin/gen_flowscape" --shard 3/2 --out "$work/x"
 check "unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/gen_flowscape" --weather sunny,snow --out "$work/x"
-check "missing config" fails_clearly "nope.json: cannot open the config file" "$bin/gen_flowscape" --config "$work/nope.json" --out "$work/x"
+check "missing config" fails_clearly "nope.json: file not found" "$bin/gen_flowscape" --config "$work/nope.json" --out "$work/x"
 echo '{"frams": 3}' >"$work/typo.json"
 check "typo in config" fails_clearly 'typo.json: release config: unknown key "frams"' "$bin/gen_flowscape" --config "$work/typo.json" --out "$work/x"
 check "no output after bad input" test ! -e "$work/x"

@@ -1,15 +1,73 @@
 #include "flowscape/core/files.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace flowscape {
+namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kTemporaryPrefix = ".partial-";
+
+[[noreturn]] void fail(const fs::path& path, const std::string& what) {
+  throw FileError(path, what + ": " + std::strerror(errno));
+}
+
+// A descriptor that closes itself if an error leaves it open.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+void write_all(const fs::path& temporary, const fs::path& path, std::string_view bytes) {
+  Descriptor file{::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)};
+  if (file.fd < 0) fail(path, "cannot create");
+  while (!bytes.empty()) {
+    const ssize_t written = ::write(file.fd, bytes.data(), bytes.size());
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) fail(path, "cannot write");
+    bytes.remove_prefix(std::size_t(written));
+  }
+  if (::fsync(file.fd) != 0) fail(path, "cannot write (fsync)");
+  const int fd = std::exchange(file.fd, -1);
+  if (::close(fd) != 0) fail(path, "cannot write (close)");
+}
+
+// Flushes what another writer put in `temporary`; errors the page cache held back surface here.
+void sync_file(const fs::path& temporary, const fs::path& path) {
+  Descriptor file{::open(temporary.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (file.fd < 0) fail(path, "cannot reopen the written file");
+  if (::fsync(file.fd) != 0) fail(path, "cannot write (fsync)");
+}
+
+void sync_folder(const fs::path& path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  Descriptor dir{::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)};
+  if (dir.fd < 0 || ::fsync(dir.fd) != 0) fail(path, "cannot sync its folder");
+}
+
+void replace_with(const fs::path& temporary, const fs::path& path,
+                  const std::function<void()>& write) {
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  try {
+    write();
+    if (::rename(temporary.c_str(), path.c_str()) != 0) fail(path, "cannot rename into place");
+    sync_folder(path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
 
 }  // namespace
 
@@ -22,39 +80,50 @@ std::FILE* diagnostics() {
   return stream;
 }
 
-std::filesystem::path temporary_path(const std::filesystem::path& path) {
-  return path.parent_path() / (kTemporaryPrefix + path.filename().string());
+fs::path temporary_path(const fs::path& path) {
+  // the process id keeps processes writing the same file (shards recording config.json) apart
+  return path.parent_path() /
+         (kTemporaryPrefix + std::to_string(::getpid()) + "-" + path.filename().string());
 }
 
-void write_atomically(const std::filesystem::path& path,
-                      const std::function<void(const std::filesystem::path&)>& write) {
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  const std::filesystem::path temporary = temporary_path(path);
-  try {
+void write_file(const fs::path& path, std::string_view bytes) {
+  const fs::path temporary = temporary_path(path);
+  replace_with(temporary, path, [&] { write_all(temporary, path, bytes); });
+}
+
+void write_atomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+  const fs::path temporary = temporary_path(path);
+  replace_with(temporary, path, [&] {
     write(temporary);
-    std::filesystem::rename(temporary, path);
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw;
-  }
-}
-
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out.flush()) throw FileError(path, "cannot write");
+    sync_file(temporary, path);
   });
 }
 
-void remove_temporary_files(const std::filesystem::path& dir) {
-  if (!std::filesystem::exists(dir)) return;
-  std::vector<std::filesystem::path> found;  // removing while iterating would upset the iterator
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+void write_text(const fs::path& path, const std::string& text) { write_file(path, text); }
+
+std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw FileError(path, "file not found");
+  if (fs::is_directory(status)) throw FileError(path, "is a folder, expected a file");
+  if (!fs::is_regular_file(status)) throw FileError(path, "not a regular file");
+  const std::uintmax_t size = fs::file_size(path);
+  if (size > max_bytes)
+    throw FileError(path, "too large: " + std::to_string(size) + " bytes (at most " +
+                              std::to_string(max_bytes) + ")");
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(size, '\0');
+  if (!in.read(bytes.data(), std::streamsize(size))) fail(path, "cannot read");
+  return bytes;
+}
+
+void remove_temporary_files(const fs::path& dir) {
+  if (!fs::exists(dir)) return;
+  std::vector<fs::path> found;  // removing while iterating would upset the iterator
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
     if (entry.is_regular_file() && entry.path().filename().string().starts_with(kTemporaryPrefix))
       found.push_back(entry.path());
-  for (const auto& path : found) std::filesystem::remove(path);
+  for (const auto& path : found) fs::remove(path);
 }
 
 }  // namespace flowscape

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace flowscape {
 
@@ -30,18 +31,78 @@ Eigen::Matrix4d node_matrix(const tinygltf::Node& node) {
 
 }  // namespace
 
-double accessor_value(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
-                      std::size_t i, int component, const std::string& path) {
+namespace {
+
+struct AccessorLayout {
+  const tinygltf::Buffer* buffer;
+  std::size_t start, stride, component_size, components;
+};
+
+AccessorLayout layout(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
+                      const std::string& path) {
   if (accessor.bufferView < 0 || accessor.bufferView >= int(model.bufferViews.size()))
     fail(path, "accessor without a valid buffer view");
   const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-  const tinygltf::Buffer& buffer = model.buffers.at(view.buffer);
+  if (view.buffer < 0 || view.buffer >= int(model.buffers.size()))
+    fail(path, "a buffer view names a missing buffer");
   const int size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
   const int count = tinygltf::GetNumComponentsInType(accessor.type);
+  if (size <= 0 || count <= 0) fail(path, "accessor of an unknown type");
   const std::size_t stride = view.byteStride ? view.byteStride : std::size_t(size * count);
-  const std::size_t offset = view.byteOffset + accessor.byteOffset + i * stride + component * size;
-  if (size <= 0 || offset + size > buffer.data.size()) fail(path, "accessor reads past its buffer");
-  const unsigned char* p = buffer.data.data() + offset;
+  return {&model.buffers[view.buffer], view.byteOffset + accessor.byteOffset, stride,
+          std::size_t(size), std::size_t(count)};
+}
+
+}  // namespace
+
+std::size_t accessor_count(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
+                           const std::string& path) {
+  const AccessorLayout a = layout(model, accessor, path);
+  const std::size_t bytes = a.buffer->data.size(), element = a.component_size * a.components;
+  if (accessor.count == 0) return 0;
+  // (count - 1) * stride + start + element <= bytes, without overflow
+  if (a.start > bytes || element > bytes - a.start ||
+      (accessor.count - 1) > (bytes - a.start - element) / std::max<std::size_t>(a.stride, 1))
+    fail(path, "an accessor of " + std::to_string(accessor.count) + " elements reads past its " +
+                   std::to_string(bytes) + "-byte buffer");
+  return accessor.count;
+}
+
+const tinygltf::Accessor& accessor_at(const tinygltf::Model& model, int index,
+                                      const std::string& path) {
+  if (index < 0 || index >= int(model.accessors.size()))
+    fail(path, "accessor " + std::to_string(index) + " does not exist (the file has " +
+                   std::to_string(model.accessors.size()) + ")");
+  return model.accessors[index];
+}
+
+std::vector<int> triangle_indices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                  std::size_t vertices, const std::string& path) {
+  std::vector<int> indices;
+  if (primitive.indices < 0) {
+    for (std::size_t k = 0; k < vertices; ++k) indices.push_back(int(k));
+    return indices;
+  }
+  const tinygltf::Accessor& accessor = accessor_at(model, primitive.indices, path);
+  const std::size_t count = accessor_count(model, accessor, path);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double index = accessor_value(model, accessor, k, 0, path);
+    if (!(index >= 0 && index < double(vertices)))
+      fail(path, "triangle index " + std::to_string(index) + " out of range (the primitive has " +
+                     std::to_string(vertices) + " vertices)");
+    indices.push_back(int(index));
+  }
+  return indices;
+}
+
+double accessor_value(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
+                      std::size_t i, int component, const std::string& path) {
+  const AccessorLayout a = layout(model, accessor, path);
+  const std::size_t offset = a.start + i * a.stride + std::size_t(component) * a.component_size;
+  if (i >= accessor.count || std::size_t(component) >= a.components ||
+      offset + a.component_size > a.buffer->data.size())
+    fail(path, "accessor reads past its buffer");
+  const unsigned char* p = a.buffer->data.data() + offset;
   switch (accessor.componentType) {
     case TINYGLTF_COMPONENT_TYPE_FLOAT: {
       float v;
@@ -91,28 +152,47 @@ tinygltf::Model read_gltf(const std::string& path) {
 
 namespace {
 
+using Visit = std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>;
+
+// glTF's node hierarchy is a forest: every node is visited at most once, so a file cannot make the
+// walk loop or repeat itself.
 void walk_nodes(const tinygltf::Model& model, int index, const Eigen::Matrix4d& parent,
-                const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit,
-                int depth = 0) {
-  if (index < 0 || index >= int(model.nodes.size()) || depth > 64) return;
+                std::vector<bool>& visited, const std::string& path, const Visit& visit) {
+  if (index < 0 || index >= int(model.nodes.size()))
+    fail(path, "node " + std::to_string(index) + " does not exist (the file has " +
+                   std::to_string(model.nodes.size()) + ")");
+  if (visited[index])
+    fail(path, "node " + std::to_string(index) +
+                   " is reached twice (a cycle, or two parents): glTF nodes form a tree");
+  visited[index] = true;
   const tinygltf::Node& node = model.nodes[index];
   const Eigen::Matrix4d transform = parent * node_matrix(node);
   visit(node, transform);
-  for (int child : node.children) walk_nodes(model, child, transform, visit, depth + 1);
+  for (int child : node.children) walk_nodes(model, child, transform, visited, path, visit);
+}
+
+// The nodes no other node lists as a child.
+std::vector<int> root_nodes(const tinygltf::Model& model) {
+  std::vector<bool> child(model.nodes.size(), false);
+  for (const tinygltf::Node& node : model.nodes)
+    for (int c : node.children)
+      if (c >= 0 && c < int(child.size())) child[c] = true;
+  std::vector<int> roots;
+  for (int n = 0; n < int(model.nodes.size()); ++n)
+    if (!child[n]) roots.push_back(n);
+  return roots;
 }
 
 }  // namespace
 
-void for_each_node(
-    const tinygltf::Model& model,
-    const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit) {
-  if (model.scenes.empty()) {
-    for (int n = 0; n < int(model.nodes.size()); ++n)
-      walk_nodes(model, n, Eigen::Matrix4d::Identity(), visit);
-    return;
-  }
+void for_each_node(const tinygltf::Model& model, const std::string& path, const Visit& visit) {
+  std::vector<bool> visited(model.nodes.size(), false);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
-  for (int n : model.scenes[scene].nodes) walk_nodes(model, n, Eigen::Matrix4d::Identity(), visit);
+  if (!model.scenes.empty() && scene >= int(model.scenes.size()))
+    fail(path, "\"scene\": " + std::to_string(scene) + " names a scene the file lacks (it has " +
+                   std::to_string(model.scenes.size()) + ")");
+  const std::vector<int> roots = model.scenes.empty() ? root_nodes(model) : model.scenes[scene].nodes;
+  for (int n : roots) walk_nodes(model, n, Eigen::Matrix4d::Identity(), visited, path, visit);
 }
 
 }  // namespace flowscape

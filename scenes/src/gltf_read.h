@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "flowscape/core/types.h"
 
@@ -19,9 +20,20 @@ inline Vec3 to_y_up(const Eigen::Vector3f& p) { return {p.y(), p.z(), p.x()}; }
 tinygltf::Model read_gltf(const std::string& path);
 
 // Every node of the default scene (or every root when there is none) with its world transform.
-void for_each_node(const tinygltf::Model& model,
+// A scene index the file lacks, a node that is its own ancestor or has two parents is an error.
+void for_each_node(const tinygltf::Model& model, const std::string& path,
                    const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit);
 
+// The accessor's element count, after checking that its last element lies inside its buffer.
+std::size_t accessor_count(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
+                           const std::string& path);
+// The accessor `index` names, or an error naming the file.
+const tinygltf::Accessor& accessor_at(const tinygltf::Model& model, int index,
+                                      const std::string& path);
+// A triangle primitive's vertex indices (0..vertices-1 without an index accessor), each checked
+// against `vertices`.
+std::vector<int> triangle_indices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                  std::size_t vertices, const std::string& path);
 // Component `component` of element `i` of an accessor, checked against its buffer; normalized
 // integers become [0, 1].
 double accessor_value(const tinygltf::Model& model, const tinygltf::Accessor& accessor,

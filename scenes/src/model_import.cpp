@@ -23,6 +23,10 @@ namespace {
 
 using V3 = Eigen::Vector3d;
 
+// What one actor model may hold: far more than any real car (1e5-1e6), and a bound on the memory a
+// file that instances a mesh many times can claim.
+constexpr std::size_t kMaxModelTriangles = std::size_t(1) << 23;
+
 // A texture the file holds inside itself, as a file of its own in the cache (named by its bytes).
 std::string cached_texture(const unsigned char* bytes, std::size_t size, const std::string& type) {
   std::uint64_t hash = mix_bits(size);
@@ -75,6 +79,10 @@ void add_part(Imported& out, const std::vector<V3>& positions, const std::vector
     out.mesh.tangents.emplace_back(float(turned.x()), float(turned.y()), float(turned.z()),
                                    float(t.w()));
   }
+  if (out.mesh.triangles.size() + indices.size() / 3 > kMaxModelTriangles ||
+      out.mesh.vertices.size() + positions.size() > kMaxModelTriangles)
+    fail(path, "more than " + std::to_string(kMaxModelTriangles) +
+                   " triangles or vertices (instances included): too large for an actor model");
   for (std::size_t k = 0; k + 2 < indices.size(); k += 3) {
     for (int c = 0; c < 3; ++c)
       if (indices[k + c] < 0 || std::size_t(indices[k + c]) >= positions.size())
@@ -141,12 +149,11 @@ std::vector<Eigen::Matrix<double, N, 1>> gltf_attribute(const tinygltf::Model& m
   std::vector<Eigen::Matrix<double, N, 1>> values;
   const auto found = primitive.attributes.find(name);
   if (found == primitive.attributes.end()) return values;
-  if (found->second < 0 || found->second >= int(model.accessors.size()))
-    fail(path, std::string(name) + " names a missing accessor");
-  const tinygltf::Accessor& accessor = model.accessors[found->second];
+  const tinygltf::Accessor& accessor = accessor_at(model, found->second, path);
   if (tinygltf::GetNumComponentsInType(accessor.type) < N)
     fail(path, std::string(name) + " has too few components");
-  for (std::size_t i = 0; i < accessor.count; ++i) {
+  const std::size_t count = accessor_count(model, accessor, path);
+  for (std::size_t i = 0; i < count; ++i) {
     Eigen::Matrix<double, N, 1> value;
     for (int c = 0; c < N; ++c) value[c] = accessor_value(model, accessor, i, c, path);
     values.push_back(value);
@@ -158,7 +165,7 @@ Mesh load_gltf(const std::string& path, SemanticClass cls, Scene& scene, std::ui
   const tinygltf::Model model = read_gltf(path);
   std::map<int, std::uint16_t> materials;  // glTF material -> scene material
   Imported out;
-  for_each_node(model, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
+  for_each_node(model, path, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
     if (node.mesh < 0) return;
     if (node.mesh >= int(model.meshes.size()))
       fail(path, "node " + node.name + " refers to a mesh the file lacks");
@@ -173,16 +180,7 @@ Mesh load_gltf(const std::string& path, SemanticClass cls, Scene& scene, std::ui
       for (V3& n : normals) n = normal_matrix * n;
       std::vector<Eigen::Vector4d> tangents = gltf_attribute<4>(model, primitive, "TANGENT", path);
       for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
-      std::vector<int> indices;
-      if (primitive.indices >= 0) {
-        if (primitive.indices >= int(model.accessors.size()))
-          fail(path, "a primitive names missing indices");
-        const tinygltf::Accessor& accessor = model.accessors[primitive.indices];
-        for (std::size_t k = 0; k < accessor.count; ++k)
-          indices.push_back(int(accessor_value(model, accessor, k, 0, path)));
-      } else {
-        for (std::size_t k = 0; k < positions.size(); ++k) indices.push_back(int(k));
-      }
+      const std::vector<int> indices = triangle_indices(model, primitive, positions.size(), path);
       std::uint16_t material = fallback;
       if (primitive.material >= int(model.materials.size()))
         fail(path, "a primitive names a missing material");

@@ -3,6 +3,9 @@
 
 #include <filesystem>
 #include <map>
+#include <sstream>
+
+#include "flowscape/core/files.h"
 
 #include "gltf_read.h"
 
@@ -20,26 +23,17 @@ void append_gltf_mesh(const tinygltf::Model& model, const tinygltf::Mesh& gltf_m
     if (primitive.mode != -1 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
     const auto position = primitive.attributes.find("POSITION");
     if (position == primitive.attributes.end()) fail(path, "a primitive has no POSITION");
-    const tinygltf::Accessor& positions = model.accessors.at(position->second);
+    const tinygltf::Accessor& positions = accessor_at(model, position->second, path);
+    const std::size_t vertices = accessor_count(model, positions, path);
     const int base = int(mesh.vertices.size());
-    for (std::size_t v = 0; v < positions.count; ++v) {
+    for (std::size_t v = 0; v < vertices; ++v) {
       const Eigen::Vector4d p(accessor_value(model, positions, v, 0, path),
                               accessor_value(model, positions, v, 1, path),
                               accessor_value(model, positions, v, 2, path), 1);
       mesh.vertices.push_back(from_y_up((transform * p).head<3>()).cast<float>());
     }
-    std::vector<int> indices;
-    if (primitive.indices >= 0) {
-      const tinygltf::Accessor& accessor = model.accessors.at(primitive.indices);
-      for (std::size_t k = 0; k < accessor.count; ++k)
-        indices.push_back(int(accessor_value(model, accessor, k, 0, path)));
-    } else {
-      for (std::size_t k = 0; k < positions.count; ++k) indices.push_back(int(k));
-    }
+    const std::vector<int> indices = triangle_indices(model, primitive, vertices, path);
     for (std::size_t k = 0; k + 2 < indices.size(); k += 3) {
-      for (int c = 0; c < 3; ++c)
-        if (indices[k + c] < 0 || std::size_t(indices[k + c]) >= positions.count)
-          fail(path, "triangle index out of range");
       mesh.triangles.emplace_back(base + indices[k], base + indices[k + 1], base + indices[k + 2]);
       mesh.classes.push_back(cls);
       mesh.materials.push_back(material);
@@ -127,16 +121,15 @@ void export_gltf(const Scene& scene, double t, const std::string& path) {
       add_node(part.mesh, part_pose(actor, part, t), actor.instance);
   model.defaultScene = 0;
   tinygltf::TinyGLTF writer;
-  const std::string partial = path + ".partial";
-  if (!writer.WriteGltfSceneToFile(&model, partial, true, true, false, false))
-    fail(path, "cannot write glTF");
-  std::filesystem::rename(partial, path);
+  std::ostringstream encoded;
+  if (!writer.WriteGltfSceneToStream(&model, encoded, false, false)) fail(path, "cannot write glTF");
+  write_file(path, encoded.str());
 }
 
 std::vector<ExportedMesh> import_gltf(const std::string& path) {
   const tinygltf::Model model = read_gltf(path);
   std::vector<ExportedMesh> meshes;
-  for_each_node(model, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
+  for_each_node(model, path, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
     if (node.mesh >= int(model.meshes.size()))
       fail(path, "node " + node.name + " refers to a mesh the file lacks");
     if (node.mesh < 0) return;

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <sstream>
+#include <unistd.h>
 
 #include "flowscape/core/files.h"
 #include "temp_dir.h"
@@ -13,7 +14,8 @@ TEST_CASE("an atomic write leaves the whole new file or the old one, never a par
   const fs::path file = dir.path / "sub" / "notes.json";
   write_text(file, "first\n");
   CHECK(file_bytes(file) == "first\n");
-  CHECK(temporary_path(file) == dir.path / "sub" / ".partial-notes.json");
+  CHECK(temporary_path(file) ==
+        dir.path / "sub" / (".partial-" + std::to_string(getpid()) + "-notes.json"));
   CHECK_THROWS_WITH(write_atomically(file,
                                      [](const fs::path& temporary) {
                                        std::ofstream(temporary) << "half";

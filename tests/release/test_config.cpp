@@ -53,9 +53,31 @@ TEST_CASE("config sources: defaults, then --demo, then the config file, then the
   CHECK_THROWS_WITH(resolve_config({false, file, {}}),
                     Catch::Contains("config.json: release config: unknown key \"frams\""));
   CHECK_THROWS_WITH(resolve_config({false, dir.path / "none.json", {}}),
-                    Catch::Contains("none.json: cannot open the config file"));
+                    Catch::Contains("none.json: file not found"));
+  CHECK_THROWS_WITH(resolve_config({false, dir.path, {}}),
+                    Catch::Contains(": is a folder, expected a file"));
   CHECK_THROWS_WITH(resolve_config({false, {}, {{"maps", 0}}}),
                     Catch::Contains("maps must be in 1..8"));
+}
+
+TEST_CASE("config numbers stay what they say: no wrapping, no truncation") {
+  const auto refused = [](const char* json) {
+    try {
+      release_config_from_json(nlohmann::json::parse(json));
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(refused(R"({"maps": 4294967297})") == "release config: \"maps\" 4294967297 is out of range");
+  CHECK(refused(R"({"frames": 4.7})") == "release config: \"frames\" must be an integer (got 4.7)");
+  CHECK(refused(R"({"frames": 4.0})") == "release config: \"frames\" must be an integer (got 4.0)");
+  CHECK(refused(R"({"seed": -1})") == "release config: \"seed\" -1 is out of range");
+  CHECK(refused(R"({"spp": 2147483648})") == "release config: \"spp\" 2147483648 is out of range");
+  CHECK(refused(R"({"spp": -2147483649})") == "release config: \"spp\" -2147483649 is out of range");
+  CHECK(refused(R"({"seed": 18446744073709551615})") == "accepted");
+  CHECK(refused(R"({"cube": 1})").find("type must be boolean") != std::string::npos);
+  CHECK(refused(R"([1, 2])") == "release config: expected a JSON object");
 }
 
 TEST_CASE("shards given as K/N are parsed and checked") {

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
+#include "flowscape/core/files.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/sha256.h"
@@ -74,8 +76,43 @@ TEST_CASE("merge names what is missing or made otherwise") {
              frame_file(output_kind("valid"), Face::Back, 0));
   CHECK_THROWS_WITH(merge_shards(dir.path, false),
                     Catch::Contains("cube/back/valid/000000.png: missing (rerun shard 1)"));
-  config.spp = 2;
-  make_shard(config, 1, 2, dir.path);  // its manifest now states another config
+  // a shard rerun with another config is refused before it renders anything
+  config.spp = 2, config.shard = 1, config.shards = 2;
+  CHECK_THROWS_WITH(write_release(config, dir.path),
+                    Catch::Contains("config.json: this release was made with another config "
+                                    "(spp: 1 recorded, 2 now)"));
+  // a shard manifest stating another config (edited, or from another release) is named
+  const fs::path shard1 = dir.path / "manifests" / "shard-1-of-2.json";
+  nlohmann::json edited = read_json(shard1);
+  edited["config"]["spp"] = 2;
+  write_text(shard1, edited.dump());
   CHECK_THROWS_WITH(merge_shards(dir.path, false),
-                    Catch::Contains("shards made with different configs"));
+                    Catch::Contains("shard-1-of-2.json: made with another config or shard count "
+                                    "than shard-0-of-2.json"));
+}
+
+TEST_CASE("hostile shard manifests are refused with the file named") {
+  TempDir dir;
+  const ReleaseConfig config = tiny_release_config(2, 2);
+  make_shard(config, 0, 2, dir.path);
+  const fs::path shard = dir.path / "manifests" / "shard-0-of-2.json";
+  const nlohmann::json good = read_json(shard);
+  const auto refused_with = [&](const std::function<void(nlohmann::json&)>& change,
+                                const std::string& message) {
+    nlohmann::json hostile = good;
+    change(hostile);
+    write_text(shard, hostile.dump());
+    CHECK_THROWS_WITH(merge_shards(dir.path, false),
+                      Catch::Contains("shard-0-of-2.json: bad shard manifest: ") &&
+                          Catch::Contains(message));
+  };
+  refused_with([](auto& j) { j["shards"] = 0; }, "\"shards\" must be an integer in 1..");
+  refused_with([](auto& j) { j["shard"] = 7; }, "\"shard\" must be an integer in 0..1 (got 7)");
+  refused_with([](auto& j) { j["shards"] = 1.5; }, "(got 1.5)");
+  refused_with([](auto& j) { j.erase("config"); }, "key 'config' not found");
+  refused_with([](auto& j) { j["config"]["maps"] = 4294967297; }, "out of range");
+  refused_with([](auto& j) { j["files"]["../../etc/passwd"] = {{"bytes", 1}, {"sha256", ""}}; },
+               "is not a path under sequences/");
+  write_text(shard, "{\"shards\": ");
+  CHECK_THROWS_WITH(merge_shards(dir.path, false), Catch::Contains("shard-0-of-2.json: not JSON"));
 }

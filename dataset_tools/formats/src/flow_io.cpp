@@ -16,6 +16,7 @@ static_assert(std::endian::native == std::endian::little, "flow files are little
 
 constexpr float kFloMagic = 202021.25f;
 constexpr int kMaxSide = 1 << 16;
+constexpr std::uintmax_t kMaxFloBytes = 12 + 8 * kMaxImagePixels;
 constexpr double kKittiScale = 64.0, kKittiOffset = 32768.0;
 
 std::string at(int x, int y) {
@@ -55,39 +56,39 @@ Flow with_known_mask(const std::filesystem::path& path, Image<float> uv) {
 }  // namespace
 
 Flow read_flo(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FileError(path, std::filesystem::exists(path) ? "cannot open" : "file not found");
+  return parse_flo(path, read_file(path, kMaxFloBytes));
+}
+
+Flow parse_flo(const std::filesystem::path& path, std::string_view bytes) {
+  if (bytes.size() < 12) throw FileError(path, "truncated .flo header (needs 12 bytes)");
   float magic = 0;
   std::int32_t size[2] = {0, 0};
-  in.read(reinterpret_cast<char*>(&magic), 4);
-  in.read(reinterpret_cast<char*>(size), 8);
-  if (!in) throw FileError(path, "truncated .flo header (needs 12 bytes)");
+  std::memcpy(&magic, bytes.data(), 4);
+  std::memcpy(size, bytes.data() + 4, 8);
   if (magic != kFloMagic) throw FileError(path, "not a Middlebury .flo file (bad magic number)");
   const int width = size[0], height = size[1];
   if (width <= 0 || height <= 0 || width > kMaxSide || height > kMaxSide)
     throw FileError(path, "bad .flo size " + std::to_string(width) + "x" + std::to_string(height));
+  // the header's size is checked against the file's before anything is allocated
+  const std::size_t data = std::size_t(width) * std::size_t(height) * 8;
+  if (bytes.size() - 12 < data)
+    throw FileError(path, "truncated .flo data: the header's " + std::to_string(width) + "x" +
+                              std::to_string(height) + " needs " + std::to_string(data) +
+                              " bytes, the file has " + std::to_string(bytes.size() - 12));
+  if (bytes.size() - 12 > data) throw FileError(path, "trailing bytes after the .flo data");
   Image<float> uv(width, height, 2);
-  const std::streamsize bytes = std::streamsize(uv.data.size() * sizeof(float));
-  in.read(reinterpret_cast<char*>(uv.data.data()), bytes);
-  if (in.gcount() != bytes)
-    throw FileError(path, "truncated .flo data: expected " + std::to_string(bytes) +
-                              " bytes, found " + std::to_string(in.gcount()));
-  if (in.peek() != std::char_traits<char>::eof())
-    throw FileError(path, "trailing bytes after the .flo data");
+  std::memcpy(uv.data.data(), bytes.data() + 12, data);
   return with_known_mask(path, std::move(uv));
 }
 
 void write_flo(const std::filesystem::path& path, ImageView<const float> uv) {
   require_flow_image(path, uv);
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    const std::int32_t size[2] = {uv.width, uv.height};
-    out.write(reinterpret_cast<const char*>(&kFloMagic), 4);
-    out.write(reinterpret_cast<const char*>(size), 8);
-    out.write(reinterpret_cast<const char*>(uv.data), std::streamsize(uv.pixel_count() * 8));
-    out.close();
-    if (!out) throw FileError(path, "cannot write .flo data");
-  });
+  std::string bytes(12 + uv.pixel_count() * 8, '\0');
+  const std::int32_t size[2] = {uv.width, uv.height};
+  std::memcpy(bytes.data(), &kFloMagic, 4);
+  std::memcpy(bytes.data() + 4, size, 8);
+  std::memcpy(bytes.data() + 12, uv.data, uv.pixel_count() * 8);
+  write_file(path, bytes);
 }
 
 Flow read_kitti_png(const std::filesystem::path& path) {

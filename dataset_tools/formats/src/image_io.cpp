@@ -1,5 +1,6 @@
 #include "flowscape/formats/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -54,14 +55,53 @@ std::string describe(OIIO::TypeDesc type) {
   return std::string(type.c_str());
 }
 
+// Rows per compressed chunk of a scanline EXR, by compression (OpenEXR's file layout).
+int exr_rows_per_chunk(const std::string& compression) {
+  if (compression == "zip" || compression == "pxr24") return 16;
+  if (compression == "piz" || compression.starts_with("b44") || compression == "dwaa") return 32;
+  if (compression == "dwab") return 256;
+  return 1;  // none, rle, zips
+}
+
+// Refuses, before anything is allocated, headers that claim more than the file can hold: too many
+// pixels or bytes for any image we read, more deflated PNG data than 1032:1 (deflate's limit)
+// allows, or more EXR chunks than the file has room for their offsets.
+void check_header(const std::filesystem::path& path, const OIIO::ImageInput& in) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw FileError(path, "image has no pixels");
+  const std::uintmax_t pixels = std::uintmax_t(spec.width) * std::uintmax_t(spec.height);
+  const std::uintmax_t bytes = pixels * std::uintmax_t(spec.nchannels) * 4;
+  const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+                           std::to_string(spec.nchannels);
+  if (pixels > kMaxImagePixels || bytes > kMaxImageBytes)
+    throw FileError(path, "header claims " + size + " pixels, over the limit of 2^28 pixels / 2 GiB");
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path);
+  const std::string format = in.format_name();
+  const std::uintmax_t raw = pixels * std::uintmax_t(spec.nchannels) * spec.format.size();
+  if (format == "png" && raw > 1032 * file_bytes + (1u << 16))
+    throw FileError(path, "header claims " + size + " pixels, more than a " +
+                              std::to_string(file_bytes) + "-byte PNG can hold");
+  if (format == "openexr") {
+    const int tile = std::max(spec.tile_width, 1) * std::max(spec.tile_height, 1);
+    const std::uintmax_t chunks =
+        spec.tile_width > 0
+            ? pixels / std::uintmax_t(tile)
+            : std::uintmax_t(spec.height) /
+                  exr_rows_per_chunk(spec.get_string_attribute("compression"));
+    if (chunks * 8 > file_bytes)
+      throw FileError(path, "header claims " + size + " pixels, more chunks than a " +
+                                std::to_string(file_bytes) + "-byte EXR can hold");
+  }
+}
+
 std::unique_ptr<OIIO::ImageInput> open_input(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw FileError(path, "file not found");
+  if (!std::filesystem::is_regular_file(path)) throw FileError(path, "not a regular file");
   MutedLibraryStderr muted;
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw FileError(path, "cannot read image: " + first_line(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw FileError(path, "image has no pixels");
+  check_header(path, *in);
   return in;
 }
 
@@ -102,18 +142,22 @@ Image<T> read_image(const std::filesystem::path& path) {
 template <class T>
 void write_image(const std::filesystem::path& path, ImageView<const T> image,
                  const std::vector<std::string>& channel_names) {
-  write_atomically(path, [&](const std::filesystem::path& temporary) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out)
-      throw FileError(path, "no image writer for this extension: " + first_line(OIIO::geterror()));
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, type_of<T>());
-    if (!channel_names.empty()) spec.channelnames = channel_names;
-    // OpenEXR output stamps the write time otherwise; a release must be the same bytes every run
-    spec.attribute("DateTime", "");
-    if (!out->open(temporary.string(), spec) || !out->write_image(type_of<T>(), image.data) ||
-        !out->close())
-      throw FileError(path, "cannot write image: " + first_line(out->geterror()));
-  });
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out)
+    throw FileError(path, "no image writer for this extension: " + first_line(OIIO::geterror()));
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, type_of<T>());
+  if (!channel_names.empty()) spec.channelnames = channel_names;
+  // OpenEXR output stamps the write time otherwise; a release must be the same bytes every run
+  spec.attribute("DateTime", "");
+  // encoded in memory, so that write_file checks every byte that reaches the disk
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+    throw FileError(path, "this image type cannot be encoded in memory");
+  if (!out->open(path.string(), spec) || !out->write_image(type_of<T>(), image.data) ||
+      !out->close())
+    throw FileError(path, "cannot encode image: " + first_line(out->geterror()));
+  write_file(path, {reinterpret_cast<const char*>(encoded.data()), encoded.size()});
 }
 
 template Image<std::uint8_t> read_image(const std::filesystem::path&);

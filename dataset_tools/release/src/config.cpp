@@ -1,12 +1,13 @@
 #include "flowscape/release/config.h"
 
-#include <cstdio>
-#include <fstream>
+#include <charconv>
+#include <limits>
 #include <stdexcept>
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/random.h"
 #include "flowscape/release/layout.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
 
@@ -29,14 +30,28 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("cube", c.cube), visit("models", c.models);
 }
 
-nlohmann::json read_json_file(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw FileError(path, "cannot open the config file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(path, std::string("not JSON: ") + e.what());
-  }
+// A JSON number as an integer of type T, refusing fractions and values T cannot hold (JSON
+// numbers would otherwise be truncated or wrapped).
+template <class T>
+T checked_integer(const nlohmann::json& value, const char* key) {
+  const std::string name = std::string("\"") + key + "\" ";
+  if (!value.is_number_integer())
+    throw std::invalid_argument("release config: " + name + "must be an integer (got " +
+                                value.dump() + ")");
+  const bool fits = value.is_number_unsigned()
+                        ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<T>::max())
+                        : value.get<std::int64_t>() >= std::int64_t(std::numeric_limits<T>::min());
+  if (!fits)
+    throw std::invalid_argument("release config: " + name + value.dump() + " is out of range");
+  return value.get<T>();
+}
+
+template <class T>
+T checked_value(const nlohmann::json& value, const char* key) {
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>)
+    return checked_integer<T>(value, key);
+  else
+    return value.get<T>();
 }
 
 }  // namespace
@@ -81,7 +96,7 @@ ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c)
   }
   try {
     for_each_field(c, [&](const char* key, auto& field) {
-      field = merged.at(key).get<std::decay_t<decltype(field)>>();
+      field = checked_value<std::decay_t<decltype(field)>>(merged.at(key), key);
     });
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("release config: ") + e.what());
@@ -104,7 +119,7 @@ ReleaseConfig resolve_config(const ConfigSources& sources) {
   ReleaseConfig config = sources.demo ? release_config_from_json(demo_config()) : ReleaseConfig{};
   if (!sources.file.empty()) {
     try {
-      config = release_config_from_json(read_json_file(sources.file), config);
+      config = release_config_from_json(read_json(sources.file), config);
     } catch (const std::invalid_argument& e) {
       throw FileError(sources.file, e.what());
     }
@@ -115,9 +130,16 @@ ReleaseConfig resolve_config(const ConfigSources& sources) {
 
 void parse_shard(const std::string& text, ReleaseConfig& config) {
   int k = -1, n = -1;
-  char slash = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d", &k, &slash, &n) != 3 || slash != '/')
-    throw std::invalid_argument("--shard wants K/N, e.g. 0/4 (got \"" + text + "\")");
+  const char* end = text.data() + text.size();
+  const std::from_chars_result k_read = std::from_chars(text.data(), end, k);
+  bool whole = k_read.ec == std::errc() && k_read.ptr < end && *k_read.ptr == '/';
+  if (whole) {
+    const std::from_chars_result n_read = std::from_chars(k_read.ptr + 1, end, n);
+    whole = n_read.ec == std::errc() && n_read.ptr == end;
+  }
+  if (!whole)
+    throw std::invalid_argument("--shard wants K/N with whole numbers, e.g. 0/4 (got \"" + text +
+                                "\")");
   config.shard = k, config.shards = n;
   validate(config);
 }

@@ -2,12 +2,14 @@
 
 #include <tbb/parallel_for.h>
 
-#include <fstream>
+#include <algorithm>
+#include <stdexcept>
 #include <map>
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/layout.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/sha256.h"
 #include "flowscape/scenes/city.h"
 
@@ -40,19 +42,61 @@ nlohmann::json counts(const ReleaseConfig& config) {
           {"sequences_per_map", per_map}};
 }
 
-std::vector<nlohmann::json> read_shard_manifests(const fs::path& out) {
+struct ShardManifest {
+  fs::path path;
+  nlohmann::json config;  // as written, to compare shards
+  int shard = 0, shards = 1;
+  nlohmann::json files;
+};
+
+int integer_in(const nlohmann::json& j, const char* key, int lo, int hi) {
+  const nlohmann::json& value = j.at(key);
+  if (!value.is_number_integer() || value < lo || value > hi)
+    throw std::invalid_argument(std::string("\"") + key + "\" must be an integer in " +
+                                std::to_string(lo) + ".." + std::to_string(hi) + " (got " +
+                                value.dump() + ")");
+  return value.get<int>();
+}
+
+// A file entry names a file under sequences/ and its size and hash.
+void check_file_entry(const std::string& name, const nlohmann::json& entry) {
+  const fs::path path(name);
+  const bool inside = path.is_relative() && !name.empty() &&
+                      std::none_of(path.begin(), path.end(), [](const fs::path& part) {
+                        return part == ".." || part == ".";
+                      });
+  if (!inside || !name.starts_with(sequence_dir("", "").generic_string()))
+    throw std::invalid_argument("file \"" + name + "\" is not a path under sequences/");
+  if (!entry.is_object() || !entry.value("bytes", nlohmann::json()).is_number_unsigned() ||
+      !entry.value("sha256", nlohmann::json()).is_string())
+    throw std::invalid_argument("file \"" + name + "\" lacks its bytes or sha256");
+}
+
+ShardManifest read_shard_manifest(const fs::path& path) {
+  const nlohmann::json j = read_json(path);
+  try {
+    ShardManifest m{path, j.at("config"), 0, 1, {}};
+    release_config_from_json(m.config);  // validates
+    m.shards = integer_in(j, "shards", 1, 1 << 20);
+    m.shard = integer_in(j, "shard", 0, m.shards - 1);
+    m.files = j.at("files");
+    if (!m.files.is_object()) throw std::invalid_argument("\"files\" must be an object");
+    for (const auto& [name, entry] : m.files.items()) check_file_entry(name, entry);
+    return m;
+  } catch (const std::exception& e) {
+    throw FileError(path, std::string("bad shard manifest: ") + e.what());
+  }
+}
+
+std::vector<ShardManifest> read_shard_manifests(const fs::path& out) {
   const fs::path dir = out / kShardDir;
   if (!fs::is_directory(dir)) throw FileError(dir, "no shard manifests (did the shards run?)");
-  std::vector<nlohmann::json> shards;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    std::ifstream in(entry.path());
-    try {
-      shards.push_back(nlohmann::json::parse(in));
-    } catch (const nlohmann::json::exception& e) {
-      throw FileError(entry.path(), std::string("not a shard manifest: ") + e.what());
-    }
-  }
+  std::vector<ShardManifest> shards;
+  for (const auto& entry : fs::directory_iterator(dir))
+    shards.push_back(read_shard_manifest(entry.path()));
   if (shards.empty()) throw FileError(dir, "no shard manifests (did the shards run?)");
+  std::sort(shards.begin(), shards.end(),
+            [](const ShardManifest& a, const ShardManifest& b) { return a.path < b.path; });
   return shards;
 }
 
@@ -90,6 +134,7 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
   nlohmann::json all = files;
   for (const fs::path& card : dataset_card_files(out))
     all[card.generic_string()] = file_entry(out / card);
+  if (fs::exists(out / kConfigFile)) all[kConfigFile] = file_entry(out / kConfigFile);
   const nlohmann::json manifest = {{"generator", kGeneratorVersion},
                                    {"config", to_json(config)},
                                    {"counts", counts(config)},
@@ -114,21 +159,17 @@ void write_shard_manifest(const fs::path& out, const ReleaseConfig& config,
 }
 
 ReleaseConfig merge_shards(const fs::path& out, bool verify) {
-  const std::vector<nlohmann::json> shards = read_shard_manifests(out);
-  ReleaseConfig config;
-  try {
-    config = release_config_from_json(shards.front().at("config"));
-    config.shards = shards.front().at("shards").get<int>();
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(out / kShardDir, std::string("bad shard manifest: ") + e.what());
-  }
-  std::vector<bool> seen(std::size_t(std::max(1, config.shards)), false);
+  const std::vector<ShardManifest> shards = read_shard_manifests(out);
+  ReleaseConfig config = release_config_from_json(shards.front().config);
+  config.shards = shards.front().shards;
+  std::vector<bool> seen(std::size_t(config.shards), false);
   nlohmann::json files = nlohmann::json::object();
-  for (const nlohmann::json& shard : shards) {
-    if (shard.at("config") != shards.front().at("config") || shard.at("shards") != config.shards)
-      throw FileError(out / kShardDir, "shards made with different configs");
-    seen.at(shard.at("shard").get<std::size_t>()) = true;
-    files.update(shard.at("files"));
+  for (const ShardManifest& shard : shards) {
+    if (shard.config != shards.front().config || shard.shards != config.shards)
+      throw FileError(shard.path, "made with another config or shard count than " +
+                                      shards.front().path.filename().string());
+    seen[std::size_t(shard.shard)] = true;
+    files.update(shard.files);
   }
   std::string missing;
   for (std::size_t k = 0; k < seen.size(); ++k)

@@ -79,12 +79,21 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
   return m;
 }
 
+nlohmann::json read_json(const fs::path& path) {
+  const std::string text = read_file(path, std::uintmax_t(1) << 28);
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(path, std::string("not JSON: ") + e.what());
+  }
+}
+
 SequenceMeta read_meta(const fs::path& sequence_dir) {
   const fs::path path = sequence_dir / kMetaFile;
-  std::ifstream in(path);
-  if (!in) throw FileError(path, "missing (an unfinished sequence?)");
+  if (!fs::exists(path)) throw FileError(path, "missing (an unfinished sequence?)");
+  const nlohmann::json json = read_json(path);
   try {
-    return meta_from_json(nlohmann::json::parse(in));
+    return meta_from_json(json);
   } catch (const std::exception& e) {
     throw FileError(path, std::string("bad meta.json: ") + e.what());
   }

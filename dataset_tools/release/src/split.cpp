@@ -42,6 +42,10 @@ void link_or_copy(const fs::path& from, const fs::path& to) {
 std::vector<SequenceInfo> read_release_sequences(const fs::path& release) {
   const fs::path root = sequence_dir(release, "");
   if (!fs::is_directory(root)) throw FileError(root, "not a FlowScape release (no sequences/)");
+  if (!fs::exists(release / kManifestFile))
+    throw FileError(release / kManifestFile,
+                    "missing: the release is unfinished (rerun gen_flowscape, or flowscape_merge "
+                    "after shards)");
   std::vector<SequenceInfo> sequences;
   for (const auto& entry : fs::directory_iterator(root)) {
     const SequenceMeta meta = read_meta(entry.path());

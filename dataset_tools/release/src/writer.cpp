@@ -6,12 +6,14 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/progress.h"
+#include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/renderer/denoise.h"
 #include "flowscape/stitcher/stitch.h"
@@ -90,9 +92,48 @@ void write_frame(const ReleaseConfig& config, const Sequence& sequence, Renderer
              view_images(std::move(truth), linear_to_srgb8(erp_color.view())));
 }
 
-bool all_exist(const fs::path& dir, const std::vector<fs::path>& files) {
+bool all_complete(const fs::path& dir, const std::vector<fs::path>& files) {
   return std::all_of(files.begin(), files.end(),
-                     [&](const fs::path& f) { return fs::exists(dir / f); });
+                     [&](const fs::path& f) { return is_complete_file(dir / f); });
+}
+
+bool meta_readable(const fs::path& dir) {
+  try {
+    read_meta(dir);
+    return true;
+  } catch (const FileError&) {
+    return false;
+  }
+}
+
+// "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ.
+std::string config_differences(const nlohmann::json& recorded, const nlohmann::json& now) {
+  std::string text;
+  for (const auto& [key, value] : now.items()) {
+    const nlohmann::json before = recorded.value(key, nlohmann::json());
+    if (before != value)
+      text += (text.empty() ? "" : "; ") + key + ": " + before.dump() + " recorded, " +
+              value.dump() + " now";
+  }
+  for (const auto& [key, value] : recorded.items())
+    if (!now.contains(key)) text += (text.empty() ? "" : "; ") + key + ": unknown here";
+  return text;
+}
+
+// The files and folders of a release that --force deletes (nothing else in `out` is touched).
+void remove_release_files(const fs::path& out) {
+  for (const fs::path& entry :
+       {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile, out / "manifests"})
+    fs::remove_all(entry);
+  for (const fs::path& card : dataset_card_files(out)) fs::remove(out / card);
+}
+
+// The config a release in `out` was started with: config.json (written before any frame) or, for a
+// release from before it, its manifest's.
+nlohmann::json recorded_config(const fs::path& out) {
+  if (fs::exists(out / kConfigFile)) return read_json(out / kConfigFile);
+  if (fs::exists(out / kManifestFile)) return read_json(out / kManifestFile).value("config", nlohmann::json());
+  return nullptr;
 }
 
 }  // namespace
@@ -104,14 +145,15 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   remove_temporary_files(dir);
   std::vector<int> frames_to_render;
   for (int f = 0; f < config.frames; ++f) {
-    if (all_exist(dir, frame_files(f, config.frames, config.cube)))
+    if (all_complete(dir, frame_files(f, config.frames, config.cube)))
       progress.frame_skipped();
     else
       frames_to_render.push_back(f);
   }
-  if (frames_to_render.empty() && fs::exists(dir / kMetaFile)) return;
+  const bool has_meta = meta_readable(dir);
+  if (frames_to_render.empty() && has_meta) return;
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
-  if (!fs::exists(dir / kMetaFile)) write_meta(dir, sequence_meta(sequence, plan, config));
+  if (!has_meta) write_meta(dir, sequence_meta(sequence, plan, config));
   Renderer renderer(sequence.city.scene);
   const CubeToErp map =
       config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
@@ -121,7 +163,22 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   }
 }
 
-ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out) {
+void claim_release(const ReleaseConfig& config, const fs::path& out, bool force) {
+  const nlohmann::json now = to_json(config), recorded = recorded_config(out);
+  if (!recorded.is_null() && recorded != now) {
+    if (!force)
+      throw FileError(out / (fs::exists(out / kConfigFile) ? kConfigFile : kManifestFile),
+                      "this release was made with another config (" +
+                          config_differences(recorded, now) +
+                          "): rerun with the recorded values, use another folder, or --force to "
+                          "delete the release's files and start over");
+    remove_release_files(out);
+  }
+  if (recorded != now) write_text(out / kConfigFile, now.dump(1) + "\n");
+}
+
+ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, bool force) {
+  claim_release(config, out, force);
   const std::vector<SequencePlan> mine = shard_plans(config);
   Progress progress("gen_flowscape", mine.size() * std::size_t(config.frames), "frames");
   for (const SequencePlan& plan : mine)

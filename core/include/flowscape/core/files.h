@@ -5,6 +5,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace flowscape {
 
@@ -18,14 +19,24 @@ struct FileError : std::runtime_error {
 // chatter on fd 2 is muted (see formats/image_io.cpp).
 std::FILE* diagnostics();
 
-// Writes through a temporary file beside `path` (same extension) and renames it into place, so a
-// crash never leaves a half-written `path`. The temporary is removed when `write` throws.
+// Every output goes through here. Writes through a temporary file beside `path` (same extension),
+// checking each write, fsync and close, and renames it into place only when all succeeded, then
+// syncs the folder: a crash or a full disk never leaves a half-written file under `path`. The first
+// failure throws a FileError naming `path` and the OS error; the temporary is removed.
+void write_file(const std::filesystem::path& path, std::string_view bytes);
+// A text file (JSON, Markdown, lists): write_file.
+void write_text(const std::filesystem::path& path, const std::string& text);
+// For writers that must name a file themselves (a hard link, a video encoder): `write` fills the
+// temporary; it is then synced (errors checked) and renamed like write_file's.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write);
-// A text file (JSON, Markdown, lists), written atomically.
-void write_text(const std::filesystem::path& path, const std::string& text);
 
-// The temporary name write_atomically uses for `path` (hidden, same folder, same extension).
+// The bytes of a regular file, refusing folders, missing files and files over `max_bytes`, each
+// with a FileError naming it.
+std::string read_file(const std::filesystem::path& path, std::uintmax_t max_bytes = 1u << 30);
+
+// The temporary name write_file uses for `path`: hidden, same folder, same extension, with the
+// process id (".partial-<pid>-name.ext").
 std::filesystem::path temporary_path(const std::filesystem::path& path);
 // Removes the temporary files a killed run left anywhere under `dir`.
 void remove_temporary_files(const std::filesystem::path& dir);

@@ -3,6 +3,7 @@
 // and throws FileError naming the file and the problem; every writer writes atomically.
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 
 #include "flowscape/core/image.h"
 
@@ -15,7 +16,9 @@ struct Flow {
 
 // Middlebury: "PIEH" (202021.25f), int32 width, int32 height, then float32 u,v interleaved,
 // little endian. Components above 1e9 mean unknown.
+// The header's size is checked against the file's length before anything is allocated.
 Flow read_flo(const std::filesystem::path& path);
+Flow parse_flo(const std::filesystem::path& path, std::string_view bytes);  // errors name `path`
 void write_flo(const std::filesystem::path& path, ImageView<const float> uv);
 
 // KITTI: RGB 16-bit PNG, R = u * 64 + 2^15, G = v * 64 + 2^15, B = 1 where valid.

@@ -14,6 +14,11 @@
 
 namespace flowscape {
 
+// The most any image read may hold; larger headers are refused before decoding, as are headers
+// claiming more pixels than their file can hold (image_io.cpp: check_header).
+inline constexpr std::uintmax_t kMaxImagePixels = std::uintmax_t(1) << 28;
+inline constexpr std::uintmax_t kMaxImageBytes = std::uintmax_t(1) << 31;
+
 // An image in the pixel type stored in its file (8-bit, 16-bit, or float for everything else).
 using AnyImage = std::variant<Image<std::uint8_t>, Image<std::uint16_t>, Image<float>>;
 AnyImage read_any_image(const std::filesystem::path& path);

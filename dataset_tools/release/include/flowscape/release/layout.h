@@ -64,6 +64,8 @@ std::string frame_name(int frame);                 // "000042"
 std::filesystem::path sequence_dir(const std::filesystem::path& release, const std::string& name);
 inline constexpr const char* kMetaFile = "meta.json";
 inline constexpr const char* kManifestFile = "manifest.json";
+// The config a release is being made with, written before its first frame (writer.h).
+inline constexpr const char* kConfigFile = "config.json";
 
 // A view of a sequence: the ERP panorama (no face) or one cube face.
 using View = std::optional<Face>;

@@ -31,6 +31,10 @@ struct SequenceMeta {
 nlohmann::json to_json(const SequenceMeta& meta);
 SequenceMeta meta_from_json(const nlohmann::json& json);  // throws std::invalid_argument
 
+// Any JSON file of a release (meta.json, manifests, configs), at most 256 MiB; a missing file, a
+// folder or bad JSON is a FileError naming it.
+nlohmann::json read_json(const std::filesystem::path& path);
+
 // <sequence dir>/meta.json; errors are FileErrors naming the file.
 SequenceMeta read_meta(const std::filesystem::path& sequence_dir);
 void write_meta(const std::filesystem::path& sequence_dir, const SequenceMeta& meta);

@@ -10,19 +10,26 @@ namespace flowscape {
 struct SequenceProgress {
   std::function<void()> frame_done, frame_skipped;
 };
-// Renders and writes one sequence: meta.json, then every frame whose files are not all there yet
-// (temporary files a killed run left are removed first). Files appear atomically; the same config
+// Renders and writes one sequence: meta.json, then every frame whose files are not all there and
+// complete yet (formats/complete_file.h; temporary files a killed run left are removed first). Files appear atomically; the same config
 // gives the same bytes whatever the thread count.
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan,
                     const std::filesystem::path& out, const SequenceProgress& progress);
 
-// This shard's sequences (all of them for one shard), then the dataset card and manifest.json, or
-// for one of several shards its shard manifest (manifest.h). Progress: done/total, rate, ETA on
-// stderr.
+// Records the config in <out>/config.json before anything else. If `out` already holds a release
+// made with another config (config.json, or manifest.json's), refuses with a FileError naming the
+// differing keys, or with `force` deletes that release's files (sequences/, manifests, card,
+// config.json, manifest.json; nothing else) and starts over.
+void claim_release(const ReleaseConfig& config, const std::filesystem::path& out, bool force);
+
+// claim_release, this shard's sequences (all of them for one shard), then the dataset card and
+// manifest.json, or for one of several shards its shard manifest (manifest.h). Progress:
+// done/total, rate, ETA on stderr.
 struct ReleaseWritten {
   std::filesystem::path manifest;                    // manifest.json or this shard's manifest
   std::size_t sequences = 0, frames = 0, files = 0;  // of this shard
 };
-ReleaseWritten write_release(const ReleaseConfig& config, const std::filesystem::path& out);
+ReleaseWritten write_release(const ReleaseConfig& config, const std::filesystem::path& out,
+                             bool force = false);
 
 }  // namespace flowscape
