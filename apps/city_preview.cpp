@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 
+#include "cli.h"
 #include "flowscape/core/files.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/flow_viz.h"
@@ -93,6 +94,7 @@ int main(int argc, char** argv) {
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
+  one_line_errors(app, "city_preview");
   CLI11_PARSE(app, argc, argv);
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering

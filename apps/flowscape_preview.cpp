@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "cli.h"
 #include "flowscape/core/progress.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
@@ -33,6 +34,11 @@ void write_video(const fs::path& path, const fs::path& sequence, int frames, int
       cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
       video.write(bgr);
     }
+    video.release();
+    // the encoder does not report failed writes (a full disk): read the video back
+    cv::VideoCapture check(temporary.string());
+    if (!check.isOpened() || check.get(cv::CAP_PROP_FRAME_COUNT) < frames - 1)
+      throw FileError(path, "the MP4 encoder did not write every frame (disk full?)");
   });
 }
 
@@ -49,6 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--out", out, "output folder (default: <release>/previews)");
   app.add_option("--width", width, "width of each tile")->check(CLI::Range(16, 4096));
   app.add_flag("--no-video", no_video, "contact sheets only");
+  one_line_errors(app, "flowscape_preview");
   CLI11_PARSE(app, argc, argv);
   if (out.empty()) out = (fs::path(release) / "previews").string();
   try {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "cli.h"
 #include "flowscape/core/files.h"
 #include "flowscape/release/split.h"
 
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   app.add_option("release", release, "release folder (made by gen_flowscape)")->required();
   app.add_option("--seed", seed, "which sequences of each weather go to test");
   app.add_flag("--no-panoflow", no_panoflow, "only splits/, no panoflow/ tree");
+  one_line_errors(app, "flowscape_split");
   CLI11_PARSE(app, argc, argv);
   try {
     const Split split = split_sequences(read_release_sequences(release), seed);

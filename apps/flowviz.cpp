@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <map>
 
+#include "cli.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   app.add_option("--scale", options.scale,
                  "flow magnitude (px) drawn fully saturated; 0 picks it from the flow")
       ->check(CLI::NonNegativeNumber);
+  one_line_errors(app, "flowviz");
   CLI11_PARSE(app, argc, argv);
   if (output.empty()) {
     std::filesystem::path out = input;

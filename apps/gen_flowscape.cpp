@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "cli.h"
 #include "flowscape/core/files.h"
 #include "flowscape/release/writer.h"
 
@@ -63,7 +64,12 @@ int main(int argc, char** argv) {
                  "sunny x5,cloud,fog,rain)");
   option("--vehicles", "vehicles", defaults.vehicles, "vehicles per map");
   option("--pedestrians", "pedestrians", defaults.pedestrians, "pedestrians per map");
-  option("--seed", "seed", defaults.seed, "release seed");
+  option("--seed", "seed", defaults.seed, "release seed")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            return text.find('-') == std::string::npos ? "" : "must be a whole number >= 0";
+          },
+          "UINT64"));
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
@@ -80,6 +86,7 @@ int main(int argc, char** argv) {
                "the folder holds a release made with another config: delete its files "
                "(sequences/, manifests, card, config.json, manifest.json) and start over");
   app.add_flag("--check", check, "only check the options and print the plan; write nothing");
+  one_line_errors(app, "gen_flowscape");
   CLI11_PARSE(app, argc, argv);
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);

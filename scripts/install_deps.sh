@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages FlowScape builds and tests with (run as root; skips what is there).
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config clang-format
+  build-essential cmake pkg-config clang-format clang libclang-rt-14-dev
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtinygltf-dev libassimp-dev assimp-testmodels
   slurm-wlm munge
   libeigen3-dev libopencv-dev nlohmann-json3-dev catch2 libtbb-dev libcli11-dev pybind11-dev

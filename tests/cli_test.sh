@@ -3,18 +3,7 @@
 # (non-zero exit, one clear line naming the file, no damaged output).
 set -u
 bin=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passes=0 failures=0
-check() {  # check DESCRIPTION COMMAND...
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
-fails_clearly() {  # fails_clearly EXPECTED_TEXT COMMAND...: non-zero exit, one stderr line with the text
-  local expected=$1; shift
-  "$@" >"$work/out" 2>"$work/err" && return 1
-  [ "$(wc -l <"$work/err")" -eq 1 ] && grep -qF -- "$expected" "$work/err"
-}
+source "$(dirname "$0")/shell_checks.sh"
 
 check "stitch_erp --help" "$bin/stitch_erp" --help
 check "flowviz --help" "$bin/flowviz" --help
@@ -57,5 +46,4 @@ check "city_preview: no sheet after an error" test ! -e "$work/bad.png"
 check "city_preview renders weathers" "$bin/city_preview" --maps 1 --weathers sunny rain --height 24 --spp 1 --vehicles 5 --pedestrians 5 -o "$work/weathers.png"
 check "city_preview: unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/city_preview" --weathers snow -o "$work/bad.png"
 
-echo "$passes passed, $failures failed"
-exit $((failures != 0))
+finish

@@ -5,18 +5,7 @@
 # thread count); bad input fails with one clear line; flowscape_preview writes sheets and videos.
 set -u
 bin=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passes=0 failures=0
-check() {
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
-fails_clearly() {  # non-zero exit, one stderr line with the expected text
-  local expected=$1; shift
-  "$@" >"$work/out" 2>"$work/err" && return 1
-  [ "$(wc -l <"$work/err")" -eq 1 ] && grep -qF -- "$expected" "$work/err"
-}
+source "$(dirname "$0")/shell_checks.sh"
 small=(--maps 2 --frames 4 --resolution 24 --face-size 12 --spp 2 --vehicles 12 --pedestrians 6 --seed 5)
 
 check "gen_flowscape makes a small release" "$bin/gen_flowscape" "${small[@]}" --threads 1 --out "$work/a"
@@ -146,5 +135,4 @@ check "gt_quality: a corrupt flow file is named" fails_clearly "000001.flo: trun
 check "flowscape_preview" "$bin/flowscape_preview" "$work/a" --sequences map00_seq05 --width 48 -o "$work/previews"
 check "preview sheet and video" test -s "$work/previews/map00_seq05.png" -a -s "$work/previews/map00_seq05.mp4"
 
-echo "$passes passed, $failures failed"
-exit $((failures != 0))
+finish

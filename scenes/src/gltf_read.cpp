@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "flowscape/core/files.h"
+
 namespace flowscape {
 
-void fail(const std::string& path, const std::string& problem) {
-  throw std::runtime_error(path + ": " + problem);
-}
+void fail(const std::string& path, const std::string& problem) { throw FileError(path, problem); }
 
 namespace {
 
@@ -76,8 +76,9 @@ const tinygltf::Accessor& accessor_at(const tinygltf::Model& model, int index,
   return model.accessors[index];
 }
 
-std::vector<int> triangle_indices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                  std::size_t vertices, const std::string& path) {
+std::vector<int> triangle_indices(const tinygltf::Model& model,
+                                  const tinygltf::Primitive& primitive, std::size_t vertices,
+                                  const std::string& path) {
   std::vector<int> indices;
   if (primitive.indices < 0) {
     for (std::size_t k = 0; k < vertices; ++k) indices.push_back(int(k));
@@ -191,7 +192,8 @@ void for_each_node(const tinygltf::Model& model, const std::string& path, const 
   if (!model.scenes.empty() && scene >= int(model.scenes.size()))
     fail(path, "\"scene\": " + std::to_string(scene) + " names a scene the file lacks (it has " +
                    std::to_string(model.scenes.size()) + ")");
-  const std::vector<int> roots = model.scenes.empty() ? root_nodes(model) : model.scenes[scene].nodes;
+  const std::vector<int> roots =
+      model.scenes.empty() ? root_nodes(model) : model.scenes[scene].nodes;
   for (int n : roots) walk_nodes(model, n, Eigen::Matrix4d::Identity(), visited, path, visit);
 }
 

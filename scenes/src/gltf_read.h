@@ -32,8 +32,9 @@ const tinygltf::Accessor& accessor_at(const tinygltf::Model& model, int index,
                                       const std::string& path);
 // A triangle primitive's vertex indices (0..vertices-1 without an index accessor), each checked
 // against `vertices`.
-std::vector<int> triangle_indices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
-                                  std::size_t vertices, const std::string& path);
+std::vector<int> triangle_indices(const tinygltf::Model& model,
+                                  const tinygltf::Primitive& primitive, std::size_t vertices,
+                                  const std::string& path);
 // Component `component` of element `i` of an accessor, checked against its buffer; normalized
 // integers become [0, 1].
 double accessor_value(const tinygltf::Model& model, const tinygltf::Accessor& accessor,

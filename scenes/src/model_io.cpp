@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "flowscape/core/files.h"
-
 #include "gltf_read.h"
 
 namespace flowscape {
@@ -122,7 +121,8 @@ void export_gltf(const Scene& scene, double t, const std::string& path) {
   model.defaultScene = 0;
   tinygltf::TinyGLTF writer;
   std::ostringstream encoded;
-  if (!writer.WriteGltfSceneToStream(&model, encoded, false, false)) fail(path, "cannot write glTF");
+  if (!writer.WriteGltfSceneToStream(&model, encoded, false, false))
+    fail(path, "cannot write glTF");
   write_file(path, encoded.str());
 }
 

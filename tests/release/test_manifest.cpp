@@ -102,17 +102,20 @@ TEST_CASE("hostile shard manifests are refused with the file named") {
     nlohmann::json hostile = good;
     change(hostile);
     write_text(shard, hostile.dump());
-    CHECK_THROWS_WITH(merge_shards(dir.path, false),
-                      Catch::Contains("shard-0-of-2.json: bad shard manifest: ") &&
-                          Catch::Contains(message));
+    CHECK_THROWS_WITH(
+        merge_shards(dir.path, false),
+        Catch::Contains("shard-0-of-2.json: bad shard manifest: ") && Catch::Contains(message));
   };
   refused_with([](auto& j) { j["shards"] = 0; }, "\"shards\" must be an integer in 1..");
   refused_with([](auto& j) { j["shard"] = 7; }, "\"shard\" must be an integer in 0..1 (got 7)");
   refused_with([](auto& j) { j["shards"] = 1.5; }, "(got 1.5)");
   refused_with([](auto& j) { j.erase("config"); }, "key 'config' not found");
   refused_with([](auto& j) { j["config"]["maps"] = 4294967297; }, "out of range");
-  refused_with([](auto& j) { j["files"]["../../etc/passwd"] = {{"bytes", 1}, {"sha256", ""}}; },
-               "is not a path under sequences/");
+  refused_with(
+      [](auto& j) {
+        j["files"]["../../etc/passwd"] = {{"bytes", 1}, {"sha256", ""}};
+      },
+      "is not a path under sequences/");
   write_text(shard, "{\"shards\": ");
   CHECK_THROWS_WITH(merge_shards(dir.path, false), Catch::Contains("shard-0-of-2.json: not JSON"));
 }

@@ -20,10 +20,10 @@ bool bytes_at(std::ifstream& in, std::streamoff offset, std::ios::seekdir from,
 }
 
 bool png_complete(const fs::path& path) {
-  static constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P', 'N', 'G',
+  static constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P',  'N',  'G',
                                                               '\r', '\n', 0x1a, '\n'};
   // an empty IEND chunk: length 0, type, CRC
-  static constexpr std::array<unsigned char, 12> kEnd = {0,   0,   0,   0,    'I',  'E',
+  static constexpr std::array<unsigned char, 12> kEnd = {0,   0,   0,    0,    'I',  'E',
                                                          'N', 'D', 0xae, 0x42, 0x60, 0x82};
   std::ifstream in(path, std::ios::binary);
   return fs::file_size(path) >= 20 && bytes_at(in, 0, std::ios::beg, kSignature) &&

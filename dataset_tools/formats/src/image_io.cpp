@@ -5,6 +5,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cstring>
+#include <fstream>
 #include <mutex>
 
 namespace flowscape {
@@ -55,6 +57,18 @@ std::string describe(OIIO::TypeDesc type) {
   return std::string(type.c_str());
 }
 
+// How far a file's pixel data can be compressed: deflate (PNG; EXR zip, zips, and pxr24's 24-bit
+// floats) at most 1032:1 (1376:1 for pxr24), run lengths 64:1; EXR's piz (Huffman with runs of
+// at most 255 codes) below 500:1, b44 below 11:1. 4096:1 bounds those and dwaa/dwab on any real
+// image.
+std::uintmax_t max_compression_ratio(const std::string& format, const std::string& compression) {
+  if (format == "png") return 1032;
+  if (compression == "none" || compression == "rle" || compression == "zip" ||
+      compression == "zips" || compression == "pxr24")
+    return 1376;
+  return 4096;
+}
+
 // Rows per compressed chunk of a scanline EXR, by compression (OpenEXR's file layout).
 int exr_rows_per_chunk(const std::string& compression) {
   if (compression == "zip" || compression == "pxr24") return 16;
@@ -64,8 +78,8 @@ int exr_rows_per_chunk(const std::string& compression) {
 }
 
 // Refuses, before anything is allocated, headers that claim more than the file can hold: too many
-// pixels or bytes for any image we read, more deflated PNG data than 1032:1 (deflate's limit)
-// allows, or more EXR chunks than the file has room for their offsets.
+// pixels or bytes for any image we read, more PNG or EXR data than its compression can hold,
+// or more EXR chunks than the file has room for their offsets.
 void check_header(const std::filesystem::path& path, const OIIO::ImageInput& in) {
   const OIIO::ImageSpec& spec = in.spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
@@ -75,32 +89,85 @@ void check_header(const std::filesystem::path& path, const OIIO::ImageInput& in)
   const std::string size = std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
                            std::to_string(spec.nchannels);
   if (pixels > kMaxImagePixels || bytes > kMaxImageBytes)
-    throw FileError(path, "header claims " + size + " pixels, over the limit of 2^28 pixels / 2 GiB");
+    throw FileError(path,
+                    "header claims " + size + " pixels, over the limit of 2^28 pixels / 2 GiB");
   const std::uintmax_t file_bytes = std::filesystem::file_size(path);
   const std::string format = in.format_name();
   const std::uintmax_t raw = pixels * std::uintmax_t(spec.nchannels) * spec.format.size();
-  if (format == "png" && raw > 1032 * file_bytes + (1u << 16))
+  const std::string compression = spec.get_string_attribute("compression");
+  const bool bounded = format == "png" || format == "openexr";
+  if (bounded && raw > max_compression_ratio(format, compression) * file_bytes + (1u << 16))
     throw FileError(path, "header claims " + size + " pixels, more than a " +
-                              std::to_string(file_bytes) + "-byte PNG can hold");
+                              std::to_string(file_bytes) + "-byte " + format + " file can hold");
   if (format == "openexr") {
     const int tile = std::max(spec.tile_width, 1) * std::max(spec.tile_height, 1);
     const std::uintmax_t chunks =
-        spec.tile_width > 0
-            ? pixels / std::uintmax_t(tile)
-            : std::uintmax_t(spec.height) /
-                  exr_rows_per_chunk(spec.get_string_attribute("compression"));
+        spec.tile_width > 0 ? pixels / std::uintmax_t(tile)
+                            : std::uintmax_t(spec.height) / exr_rows_per_chunk(compression);
     if (chunks * 8 > file_bytes)
       throw FileError(path, "header claims " + size + " pixels, more chunks than a " +
                                 std::to_string(file_bytes) + "-byte EXR can hold");
   }
 }
 
+// OpenEXR allocates what a header's attributes claim (sizes, line offset tables) while opening, so
+// the header is read here first: every attribute must fit in the file, the data window must be
+// ordered and within kMaxImagePixels. (OpenEXR's layout: magic, version, then name\0 type\0
+// int32 size, value... up to an empty name.)
+void check_exr_header(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::size_t(std::min<std::uintmax_t>(std::filesystem::file_size(path), 1 << 20)),
+                   '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  const auto fail = [&](const std::string& problem) {
+    throw FileError(path, "EXR header: " + problem);
+  };
+  std::size_t at = 8;
+  const auto text = [&] {
+    const std::size_t end = head.find('\0', at);
+    if (end == std::string::npos || end - at > 255) fail("truncated or overlong attribute name");
+    std::string s = head.substr(at, end - at);
+    at = end + 1;
+    return s;
+  };
+  bool has_window = false;
+  while (true) {
+    const std::string name = text();
+    if (name.empty()) break;
+    const std::string type = text();
+    std::int32_t size = 0;
+    if (at + 4 > head.size()) fail("truncated attribute " + name);
+    std::memcpy(&size, head.data() + at, 4);
+    at += 4;
+    if (size < 0 || std::size_t(size) > head.size() - at)
+      fail("attribute " + name + " claims " + std::to_string(size) + " bytes, past the file's end");
+    if (name == "dataWindow" && type == "box2i" && size == 16) {
+      std::int32_t box[4];
+      std::memcpy(box, head.data() + at, 16);
+      const std::int64_t width = std::int64_t(box[2]) - box[0] + 1,
+                         height = std::int64_t(box[3]) - box[1] + 1;
+      if (width <= 0 || height <= 0 || std::uintmax_t(width * height) > kMaxImagePixels)
+        fail("data window " + std::to_string(width) + "x" + std::to_string(height) +
+             " is empty or over the limit of 2^28 pixels");
+      has_window = true;
+    }
+    at += std::size_t(size);
+  }
+  if (!has_window) fail("no dataWindow");
+}
+
 std::unique_ptr<OIIO::ImageInput> open_input(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) throw FileError(path, "file not found");
   if (!std::filesystem::is_regular_file(path)) throw FileError(path, "not a regular file");
+  if (path.extension() == ".exr") check_exr_header(path);
   MutedLibraryStderr muted;
-  auto in = OIIO::ImageInput::open(path.string());
+  // the reader of the file's extension only: OpenImageIO would otherwise try every format it knows
+  // on a file that fails, slowly and with other formats' messages
+  auto in = OIIO::ImageInput::create(path.string());
   if (!in) throw FileError(path, "cannot read image: " + first_line(OIIO::geterror()));
+  OIIO::ImageSpec spec;
+  if (!in->open(path.string(), spec))
+    throw FileError(path, "cannot read image: " + first_line(in->geterror()));
   check_header(path, *in);
   return in;
 }

@@ -3,8 +3,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <stdexcept>
 #include <map>
+#include <stdexcept>
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/dataset_card.h"

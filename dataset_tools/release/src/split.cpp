@@ -7,6 +7,7 @@
 #include <map>
 
 #include "flowscape/core/random.h"
+#include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
@@ -101,7 +102,7 @@ void write_panoflow_tree(const fs::path& release, const Split& split) {
     const Job& job = jobs[k];
     const std::string name = frame_name(job.frame);
     const fs::path target = job.target / (name + (job.flow ? ".flo" : ".jpg"));
-    if (fs::exists(target)) return;
+    if (is_complete_file(target)) return;  // resumed: whole files only
     const fs::path source = job.sequence / frame_file(output_kind(job.flow ? "flow" : "color"),
                                                       std::nullopt, job.frame);
     if (job.flow)

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "flowscape/core/progress.h"
+#include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/cubemap_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/release/layout.h"
@@ -60,7 +61,7 @@ void stitch_image(const StitchFolderOptions& o, const CubeToErp& map, const Job&
       cube);
 }
 
-// The files a job writes; it is done when they all exist.
+// The files a job writes; it is done when they all exist and are complete.
 std::vector<fs::path> outputs(const StitchFolderOptions& o, const Job& job) {
   std::vector<fs::path> files{o.out_dir / folder(*job.kind) / job.file};
   const OutputKind& valid = output_kind("valid");
@@ -74,17 +75,20 @@ std::vector<Job> list_jobs(const StitchFolderOptions& o) {
   for (const std::string& file : cube_frame_files(o.cube_dir, folder(output_kind("flow"))))
     flow_frames.insert(stem(file));
   std::vector<Job> jobs;
+  std::size_t inputs = 0;
   for (const OutputKind& kind : kOutputKinds) {
     if (!kind.cube) continue;
     for (const std::string& file : cube_frame_files(o.cube_dir, folder(kind))) {
+      ++inputs;
       if (kind.name == "valid" && flow_frames.contains(stem(file))) continue;  // see stitch_flow
       const Job job{&kind, file};
       const auto files = outputs(o, job);
-      const bool done =
-          std::all_of(files.begin(), files.end(), [](const fs::path& f) { return fs::exists(f); });
+      const bool done = std::all_of(files.begin(), files.end(), is_complete_file);
       if (o.force || !done) jobs.push_back(job);
     }
   }
+  if (inputs == 0)
+    throw FileError(o.cube_dir, "no cubemap frames found (expected <face>/<kind>/<frame> files)");
   return jobs;
 }
 

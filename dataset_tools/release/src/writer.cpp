@@ -132,7 +132,8 @@ void remove_release_files(const fs::path& out) {
 // release from before it, its manifest's.
 nlohmann::json recorded_config(const fs::path& out) {
   if (fs::exists(out / kConfigFile)) return read_json(out / kConfigFile);
-  if (fs::exists(out / kManifestFile)) return read_json(out / kManifestFile).value("config", nlohmann::json());
+  if (fs::exists(out / kManifestFile))
+    return read_json(out / kManifestFile).value("config", nlohmann::json());
   return nullptr;
 }
 

@@ -11,8 +11,8 @@ struct SequenceProgress {
   std::function<void()> frame_done, frame_skipped;
 };
 // Renders and writes one sequence: meta.json, then every frame whose files are not all there and
-// complete yet (formats/complete_file.h; temporary files a killed run left are removed first). Files appear atomically; the same config
-// gives the same bytes whatever the thread count.
+// complete yet (formats/complete_file.h; temporary files a killed run left are removed first).
+// Files appear atomically; the same config gives the same bytes whatever the thread count.
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan,
                     const std::filesystem::path& out, const SequenceProgress& progress);
 
