@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
-  one_line_errors(app, "city_preview");
+  finish_options(app, "city_preview");
   CLI11_PARSE(app, argc, argv);
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
@@ -106,6 +106,7 @@ int main(int argc, char** argv) {
       const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
       const std::string weather = o.weathers.empty() ? "sunny" : o.weathers[row];
       sheet.push_back(render_row(o, map, weather));
+      label_tile(sheet.back().front(), map_name(map) + ", " + weather);
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows, map_name(map).c_str(),

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   bool verify = false;
   app.add_option("release", out, "release folder the shards wrote into")->required();
   app.add_flag("--verify", verify, "recompute every file's sha256 and compare with the shards'");
-  one_line_errors(app, "flowscape_merge");
+  finish_options(app, "flowscape_merge");
   CLI11_PARSE(app, argc, argv);
   try {
     const ReleaseConfig config = merge_shards(out, verify);

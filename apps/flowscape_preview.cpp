@@ -27,7 +27,7 @@ void write_video(const fs::path& path, const fs::path& sequence, int frames, int
       const cv::Mat rgb(tile.height, tile.width, CV_8UC3,
                         const_cast<std::uint8_t*>(tile.data.data()));
       if (!video.isOpened() &&
-          !video.open(temporary.string(), cv::VideoWriter::fourcc('m', 'p', '4', 'v'), 30,
+          !video.open(temporary.string(), cv::VideoWriter::fourcc('a', 'v', 'c', '1'), 30,
                       cv::Size(tile.width, tile.height)))
         throw FileError(path, "OpenCV cannot open an MP4 writer");
       cv::Mat bgr;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("-o,--out", out, "output folder (default: <release>/previews)");
   app.add_option("--width", width, "width of each tile")->check(CLI::Range(16, 4096));
   app.add_flag("--no-video", no_video, "contact sheets only");
-  one_line_errors(app, "flowscape_preview");
+  finish_options(app, "flowscape_preview");
   CLI11_PARSE(app, argc, argv);
   if (out.empty()) out = (fs::path(release) / "previews").string();
   try {
@@ -68,8 +68,13 @@ int main(int argc, char** argv) {
     for (const SequenceInfo& s : sequences) {
       const fs::path dir = sequence_dir(release, s.name);
       std::vector<std::vector<Image<std::uint8_t>>> rows;
-      for (int f : {0, (s.frames - 1) / 2, s.frames - 2})
+      for (int f : {0, (s.frames - 1) / 2, s.frames - 2}) {
         rows.push_back(frame_preview_row(dir, f, width));
+        const std::string frame = s.name + " (" + s.weather + ") frame " + std::to_string(f);
+        for (const auto& [tile, what] :
+             {std::pair{0, ": colour"}, {1, ": flow"}, {2, ": semantics"}})
+          label_tile(rows.back()[tile], frame + what);
+      }
       write_image(fs::path(out) / (s.name + ".png"), contact_sheet(rows));
       if (!no_video) write_video(fs::path(out) / (s.name + ".mp4"), dir, s.frames, width);
       progress.advance();

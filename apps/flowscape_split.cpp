@@ -17,15 +17,33 @@ int main(int argc, char** argv) {
   std::string release;
   std::uint64_t seed = 0;
   bool no_panoflow = false;
+  PanoflowOptions panoflow;
+  std::string flow = "classic", sky = "invalid", occluded = "kept";
   app.add_option("release", release, "release folder (made by gen_flowscape)")->required();
   app.add_option("--seed", seed, "which sequences of each weather go to test");
   app.add_flag("--no-panoflow", no_panoflow, "only splits/, no panoflow/ tree");
-  one_line_errors(app, "flowscape_split");
+  app.add_option("--flow", flow, "panoflow/ flow: classic (the public FlowScape's) or 360")
+      ->check(CLI::IsMember({"classic", "360"}));
+  app.add_option("--sky", sky,
+                 "panoflow/ sky pixels: invalid (stored as unknown, 1e10, which the public "
+                 "loader's |u|,|v| < 1000 mask drops) or kept (their finite flow)")
+      ->check(CLI::IsMember({"invalid", "kept"}));
+  app.add_option("--occluded", occluded,
+                 "panoflow/ pixels whose target is hidden in the next frame: kept, or invalid")
+      ->check(CLI::IsMember({"invalid", "kept"}));
+  finish_options(app, "flowscape_split");
   CLI11_PARSE(app, argc, argv);
   try {
     const Split split = split_sequences(read_release_sequences(release), seed);
     write_split_files(release, split);
-    if (!no_panoflow) write_panoflow_tree(release, split);
+    panoflow = {flow == "classic" ? FlowMode::Classic : FlowMode::Wrap360, sky == "invalid",
+                occluded == "invalid"};
+    if (!no_panoflow)
+      for (const std::string& folder : write_panoflow_tree(release, split, panoflow))
+        std::fprintf(diagnostics(),
+                     "flowscape_split: warning: panoflow/%s is empty (no sequence of that weather "
+                     "in that split); the folder is there for the PanoFlow code\n",
+                     folder.c_str());
     for (const auto& [label, side] : {std::pair{"train", &split.train}, {"test", &split.test}}) {
       std::map<std::string, int> per_weather;
       int pairs = 0;

@@ -23,11 +23,12 @@ int main(int argc, char** argv) {
   app.add_option("--wheel", options.wheel,
                  "panoflow: magnitudes above the scale lose saturation (the paper's figures); "
                  "middlebury: the classic wheel, normalised by the largest flow")
-      ->transform(CLI::CheckedTransformer(wheels, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(wheels, CLI::ignore_case))
+      ->default_str("panoflow");
   app.add_option("--scale", options.scale,
                  "flow magnitude (px) drawn fully saturated; 0 picks it from the flow")
       ->check(CLI::NonNegativeNumber);
-  one_line_errors(app, "flowviz");
+  finish_options(app, "flowviz");
   CLI11_PARSE(app, argc, argv);
   if (output.empty()) {
     std::filesystem::path out = input;

@@ -52,7 +52,17 @@ int main(int argc, char** argv) {
   option("--sequences-per-map", "sequences_per_map", defaults.sequences_per_map,
          "sequences per map");
   option("--frames", "frames", defaults.frames, "frames per sequence (30 Hz)");
-  option("--resolution", "resolution", defaults.height, "ERP height (width = 2 x height)");
+  app.add_option_function<std::string>(
+         "--resolution",
+         [&given](const std::string& text) {
+           try {
+             given["resolution"] = parse_resolution(text);
+           } catch (const std::invalid_argument& e) {
+             throw CLI::ValidationError(e.what());
+           }
+         },
+         "ERP size: the height (512) or height x width (512x1024; the width is twice the height)")
+      ->default_str(std::to_string(defaults.height));
   option("--face-size", "face_size", defaults.face_size, "cube face size in pixels");
   option("--spp", "spp", defaults.spp, "path-traced samples per pixel");
   option("--indirect-spp", "indirect_spp", defaults.indirect_spp,
@@ -86,7 +96,7 @@ int main(int argc, char** argv) {
                "the folder holds a release made with another config: delete its files "
                "(sequences/, manifests, card, config.json, manifest.json) and start over");
   app.add_flag("--check", check, "only check the options and print the plan; write nothing");
-  one_line_errors(app, "gen_flowscape");
+  finish_options(app, "gen_flowscape");
   CLI11_PARSE(app, argc, argv);
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.add_option("--csv", csv, "also write the rows as CSV here");
   app.add_option("--error-images", error_images, "write |I2(x + V) - I1| per pair as PNGs here");
   app.add_flag("-q,--quiet", quiet, "no progress line");
-  one_line_errors(app, "gt_quality");
+  finish_options(app, "gt_quality");
   CLI11_PARSE(app, argc, argv);
   try {
     if (root.empty() == images.empty() || images.empty() != flows.empty())

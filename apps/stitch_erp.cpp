@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
                  "write the built-in analytic cubemap to DIR/cube and stitch it to DIR/erp");
   app.add_option("--face-size", face_size, "face size of the --demo cubemap")
       ->check(CLI::Range(2, 8192));
-  one_line_errors(app, "stitch_erp");
+  finish_options(app, "stitch_erp");
   CLI11_PARSE(app, argc, argv);
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);

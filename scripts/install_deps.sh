@@ -7,6 +7,7 @@ packages=(
   slurm-wlm munge
   libeigen3-dev libopencv-dev nlohmann-json3-dev catch2 libtbb-dev libcli11-dev pybind11-dev
   python3-dev python3-numpy python3-pytest python3-torch python3-pip python3-setuptools python3-venv
+  python3-pil python3-openimageio
 )
 missing=()
 for package in "${packages[@]}"; do

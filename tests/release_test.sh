@@ -134,5 +134,6 @@ head -c 50 "$work/a/sequences/map00_seq00/erp/flow/000001.flo" >"$work/br/sequen
 check "gt_quality: a corrupt flow file is named" fails_clearly "000001.flo: truncated" "$bin/gt_quality" "$work/br" -q
 check "flowscape_preview" "$bin/flowscape_preview" "$work/a" --sequences map00_seq05 --width 48 -o "$work/previews"
 check "preview sheet and video" test -s "$work/previews/map00_seq05.png" -a -s "$work/previews/map00_seq05.mp4"
+check "the video is H.264 (x264), which browsers play" grep -aq "x264 - core" "$work/previews/map00_seq05.mp4"
 
 finish

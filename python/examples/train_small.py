@@ -1,11 +1,13 @@
-"""Trains a small flow network on a FlowScape release for a few hundred steps and prints the
-falling loss. Runs on the CPU, or on CUDA when torch sees a GPU.
+"""Trains a small flow network on a FlowScape release for a few hundred steps, printing the
+falling loss, evaluating EPE per weather on the test split and saving checkpoints (resume with
+--resume). Runs on the CPU, or on CUDA when torch sees a GPU.
 
     build/apps/gen_flowscape --maps 1 --frames 10 --resolution 64 --face-size 32 --spp 4 --out small
     build/apps/flowscape_split small
     PYTHONPATH=python:build/python python3 python/examples/train_small.py small --steps 300
 """
 import argparse
+import os
 import time
 
 import torch
@@ -35,6 +37,22 @@ class TinyFlow(nn.Module):
         return self.head(self.body(torch.cat([img1 / 255.0 - 0.5, img2 / 255.0 - 0.5, where], 1)))
 
 
+def evaluate_and_save(model, optimizer, step, test, device, folder):
+    """EPE per weather on the test split (the paper's Table III rows), then a checkpoint."""
+    model.eval()
+    rows = flowscape.evaluate_by_weather(model, test, device=device)
+    model.train()
+    print(f"step {step:4d}  test EPE " + "  ".join(
+        f"{weather} {row['epe']:.3f}" for weather, row in sorted(rows.items())))
+    os.makedirs(folder, exist_ok=True)
+    state = {"model": model.state_dict(), "optimizer": optimizer.state_dict(), "step": step,
+             "test_epe": {weather: row["epe"] for weather, row in rows.items()}}
+    for name in (f"checkpoint-{step:06d}.pt", "latest.pt"):
+        partial = os.path.join(folder, "." + name + ".partial")
+        torch.save(state, partial)
+        os.replace(partial, os.path.join(folder, name))  # never a half-written checkpoint
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("release")
@@ -45,6 +63,11 @@ def main():
     parser.add_argument("--fda", choices=("r", "e", "none"), default="none")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--lr", type=float, default=2e-3)
+    parser.add_argument("--eval-every", type=int, default=100,
+                        help="steps between evaluations on the test split (0: only at the end)")
+    parser.add_argument("--checkpoints", default="checkpoints",
+                        help="folder for checkpoint-<step>.pt and latest.pt")
+    parser.add_argument("--resume", action="store_true", help="continue from <checkpoints>/latest.pt")
     args = parser.parse_args()
     device = "cuda" if torch.cuda.is_available() else "cpu"
     torch.manual_seed(0)
@@ -55,11 +78,18 @@ def main():
     loader = torch.utils.data.DataLoader(train, batch_size=args.batch, shuffle=True,
                                          num_workers=args.workers, drop_last=True,
                                          persistent_workers=args.workers > 0)
+    test = flowscape.FlowScape(args.release, "test", extras=("meta",))
     model = TinyFlow().to(device)
     optimizer = torch.optim.AdamW(model.parameters(), lr=args.lr)
-    print(f"{len(train)} training pairs, device {device}, native extension "
+    step = 0
+    if args.resume:
+        state = torch.load(os.path.join(args.checkpoints, "latest.pt"), map_location=device)
+        model.load_state_dict(state["model"])
+        optimizer.load_state_dict(state["optimizer"])
+        step = state["step"]
+    print(f"{len(train)} training pairs, {len(test)} test pairs, device {device}, native extension "
           f"{'yes' if flowscape.native_available() else 'no (numpy)'}")
-    step, start, window, first = 0, time.time(), [], None
+    start, window, first = time.time(), [], None
     while step < args.steps:
         for img1, img2, flow, valid in loader:
             img1, img2, flow, valid = (t.to(device) for t in (img1, img2, flow, valid))
@@ -75,6 +105,8 @@ def main():
                 first = mean if first is None else first
                 print(f"step {step:4d}  EPE loss {mean:7.3f}  ({time.time() - start:5.1f} s)")
                 window = []
+            if step >= args.steps or (args.eval_every and step % args.eval_every == 0):
+                evaluate_and_save(model, optimizer, step, test, device, args.checkpoints)
             if step >= args.steps:
                 break
     print(f"loss fell from {first:.3f} to {mean:.3f}" if mean < first else

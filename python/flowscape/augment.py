@@ -159,6 +159,44 @@ def cyclic_crop(sample, height, width, rng):
             for k, v in sample.items()}
 
 
+def crop(sample, height, width, rng):
+    """A height x width crop inside the image (pinhole views: no wrapping)."""
+    h, w = sample["flow"].shape[:2]
+    if height > h or width > w:
+        raise ValueError(f"crop {height}x{width} is larger than the {h}x{w} sample")
+    y0, x0 = int(rng.integers(0, h - height + 1)), int(rng.integers(0, w - width + 1))
+    return {k: (v[y0:y0 + height, x0:x0 + width] if isinstance(v, np.ndarray) else v)
+            for k, v in sample.items()}
+
+
+def scale(sample, scale_x, scale_y):
+    """The sample resized by (scale_x, scale_y), rounded to whole pixels (RAFT's scale and stretch).
+    A point at x (pixel centres at integers) lands at (x + 0.5) s - 0.5, so every flow vector is
+    multiplied by s; images and flow are sampled bilinearly at the new pixels' pre-images (exact
+    for flow that is affine between pixels), validity only where all four taps were valid."""
+    h, w = sample["flow"].shape[:2]
+    new_h, new_w = max(1, int(round(h * scale_y))), max(1, int(round(w * scale_x)))
+    sx, sy = new_w / w, new_h / h
+    ys, xs = np.mgrid[0:new_h, 0:new_w].astype(np.float64)
+    map_x = np.clip((xs + 0.5) / sx - 0.5, 0, w - 1)
+    map_y = np.clip((ys + 0.5) / sy - 0.5, 0, h - 1)
+    out = _resample(sample, map_x, map_y, np.ones((new_h, new_w), bool),
+                    remap(sample["flow"], map_x, map_y) * np.float32([sx, sy]))
+    return out
+
+
+def flip(sample, horizontal=True):
+    """The sample mirrored left-right (u negated) or upside down (v negated): x -> W - 1 - x takes
+    a target x + u to (W - 1 - x) - u, so the mirrored field is exact. Right for 360-degree ERP
+    flow too (a mirrored sphere)."""
+    axis, component = (1, 0) if horizontal else (0, 1)
+    out = {k: (np.ascontiguousarray(np.flip(v, axis)) if isinstance(v, np.ndarray) else v)
+           for k, v in sample.items()}
+    out["flow"] = out["flow"].copy()
+    out["flow"][..., component] *= -1
+    return out
+
+
 def horizontal_shift(sample, shift):
     """The panorama turned by `shift` columns: 360-degree flow values stay exactly right."""
     return {k: (np.roll(v, shift, axis=1) if isinstance(v, np.ndarray) else v)
@@ -183,15 +221,37 @@ def photometric_jitter(sample, rng, brightness=0.3, contrast=0.3, saturation=0.3
 
 
 class Augmentation:
-    """A transform for FlowScape(transform=...): FDA ('r', 'e' or None) with `fda_probability`,
-    then a random horizontal shift (ERP), a cyclic crop to `crop` (height, width) and jitter.
+    """A transform for FlowScape(transform=...), RAFT's FlowAugmentor and the paper's FDA:
+    FDA ('r', 'e' or None) with `fda_probability`; with `scale` = (min, max) log2 factors a
+    random scale (probability `scale_probability`), stretched by up to 2^+-`stretch` per axis with
+    probability `stretch_probability`; flips left-right / upside down with `h_flip` / `v_flip`
+    probability; for panoramas a random horizontal shift; a crop to `crop` (height, width; cyclic
+    on panoramas), the sample first scaled up when it is smaller than the crop; photometric jitter.
+    panorama=False (pinhole views, e.g. FlowScape(faces=...)): no shift, plain crops.
     Each DataLoader worker draws its own numbers (seeded from torch's worker seed)."""
 
-    def __init__(self, fda=None, fda_probability=0.5, crop=None, shift=True, jitter=True, seed=None):
+    def __init__(self, fda=None, fda_probability=0.5, crop=None, shift=True, jitter=True, seed=None,
+                 scale=None, scale_probability=0.8, stretch=0.2, stretch_probability=0.8,
+                 h_flip=0.0, v_flip=0.0, panorama=True):
         if fda not in (None, "r", "e"):
             raise ValueError(f"fda must be None, 'r' or 'e', not {fda!r}")
         self.fda, self.fda_probability, self.crop = fda, fda_probability, crop
-        self.shift, self.jitter, self.seed, self.rng = shift, jitter, seed, None
+        self.shift, self.jitter, self.seed, self.rng = shift and panorama, jitter, seed, None
+        self.scale, self.scale_probability = scale, scale_probability
+        self.stretch, self.stretch_probability = stretch, stretch_probability
+        self.h_flip, self.v_flip, self.panorama = h_flip, v_flip, panorama
+
+    def _scale_factors(self, h, w, rng):
+        sx = sy = 1.0
+        if self.scale and rng.uniform() < self.scale_probability:
+            sx = sy = 2 ** rng.uniform(*self.scale)
+            if rng.uniform() < self.stretch_probability:
+                sx *= 2 ** rng.uniform(-self.stretch, self.stretch)
+                sy *= 2 ** rng.uniform(-self.stretch, self.stretch)
+        if self.crop and (h * sy < self.crop[0] or w * sx < self.crop[1]):
+            needed = max((self.crop[0] + 8) / h, (self.crop[1] + 8) / w)  # RAFT's margin
+            sx, sy = max(sx, needed), max(sy, needed)
+        return sx, sy
 
     def __call__(self, sample):
         if self.rng is None:
@@ -203,10 +263,17 @@ class Augmentation:
         rng = self.rng
         if self.fda and rng.uniform() < self.fda_probability:
             sample = (fda_r if self.fda == "r" else fda_e)(sample, rng)
+        sx, sy = self._scale_factors(*sample["flow"].shape[:2], rng)
+        if (sx, sy) != (1.0, 1.0):
+            sample = scale(sample, sx, sy)
+        if rng.uniform() < self.h_flip:
+            sample = flip(sample, horizontal=True)
+        if rng.uniform() < self.v_flip:
+            sample = flip(sample, horizontal=False)
         if self.shift:
             sample = horizontal_shift(sample, int(rng.integers(0, sample["flow"].shape[1])))
         if self.crop:
-            sample = cyclic_crop(sample, self.crop[0], self.crop[1], rng)
+            sample = (cyclic_crop if self.panorama else crop)(sample, self.crop[0], self.crop[1], rng)
         if self.jitter:
             sample = photometric_jitter(sample, rng)
         return sample

@@ -1,6 +1,7 @@
 """FlowScape splits as a torch Dataset, from a release made by gen_flowscape / flowscape_split
 (its splits over its sequences, found through the layout in manifest.json) or from the PanoFlow
 tree (panoflow/<split>/<weather>/...)."""
+import copy
 import os
 
 import numpy as np
@@ -9,6 +10,14 @@ from .io import read_flo, read_image, UNKNOWN_FLOW
 from .layout import ReleaseLayout
 
 SKY = 13
+FACES = ("front", "right", "back", "left", "up", "down")
+
+
+def pole_mask(height, degrees):
+    """Per ERP row (height rows): True where the row centre lies more than `degrees` from both
+    poles."""
+    latitude = 90 - 180 * (np.arange(height) + 0.5) / height
+    return np.abs(latitude) < 90 - degrees
 
 
 def classic_flow(flow):
@@ -21,6 +30,37 @@ def classic_flow(flow):
     return out
 
 
+class Concat:
+    """Datasets one after another, as RAFT builds its training mix (`100 * sintel + things`):
+    supports len, indexing, `+` and `n *` like FlowScape itself."""
+
+    def __init__(self, datasets):
+        self.datasets = list(datasets)
+
+    def __len__(self):
+        return sum(len(d) for d in self.datasets)
+
+    def __getitem__(self, index):
+        if index < 0:
+            index += len(self)
+        for dataset in self.datasets:
+            if index < len(dataset):
+                return dataset[index]
+            index -= len(dataset)
+        raise IndexError("index out of range")
+
+    def __add__(self, other):
+        return Concat(self.datasets + [other])
+
+    def __radd__(self, other):
+        return Concat([other] + self.datasets)
+
+    def __rmul__(self, times):
+        return Concat(self.datasets * int(times))
+
+    __mul__ = __rmul__
+
+
 class FlowScape:
     """A torch-style Dataset (len / getitem) of flow pairs.
 
@@ -31,22 +71,36 @@ class FlowScape:
 
     root: a release folder (or its panoflow/ folder); split: 'train' or 'test';
     weathers: None or a list such as ['fog', 'rain']; flow_mode: '360' or 'classic';
-    exclude_sky: drop sky pixels from valid (needs semantics); transform: called on the sample
-    dict {'img1', 'img2', 'flow', 'valid', ...} (numpy, H x W x C) before it becomes tensors.
+    exclude_sky: drop sky pixels from valid (needs semantics); exclude_poles: drop the rows within
+    this many degrees of either pole (ERP), where flow grows without bound; max_flow: drop pixels
+    whose flow is at least this long (RAFT's loaders use 400); faces: None for the panoramas, or
+    cube faces ('front', 'right', 'back', 'left', 'up', 'down') to read their pinhole views (90
+    degree field of view, pinhole flow; release layout only): each pair gives one item per face;
+    transform: called on the sample dict {'img1', 'img2', 'flow', 'valid', ...} (numpy,
+    H x W x C) before it becomes tensors.
+
+    `n * dataset` repeats the items n times and `a + b` chains datasets, as in RAFT.
     """
 
     def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
-                 extras=(), transform=None, as_tensors=True):
+                 extras=(), transform=None, as_tensors=True, exclude_poles=0.0, max_flow=None,
+                 faces=None):
         if split not in ("train", "test"):
             raise ValueError(f"split must be 'train' or 'test', not {split!r}")
         if flow_mode not in ("360", "classic"):
             raise ValueError(f"flow_mode must be '360' or 'classic', not {flow_mode!r}")
         self.root, self.flow_mode, self.exclude_sky = str(root), flow_mode, exclude_sky
         self.extras, self.transform, self.as_tensors = tuple(extras), transform, as_tensors
+        self.exclude_poles, self.max_flow = float(exclude_poles), max_flow
+        self.faces = None if faces is None else tuple(faces)
+        if self.faces is not None and (set(self.faces) - set(FACES) or not self.faces):
+            raise ValueError(f"faces must be some of {FACES}, not {faces!r}")
         if os.path.isfile(os.path.join(self.root, "manifest.json")):
             self.layout, self.items = "flowscape", self._release_items(split, weathers)
         else:
             self.layout, self.items = "panoflow", self._panoflow_items(split, weathers)
+        if self.faces is not None and self.layout != "flowscape":
+            raise ValueError(f"{self.root}: cube faces need the release layout")
         if (exclude_sky or "semantic" in self.extras) and self.layout != "flowscape":
             raise ValueError(f"{self.root}: semantics (exclude_sky) need the release layout, "
                              "the PanoFlow tree has none")
@@ -69,13 +123,14 @@ class FlowScape:
                 weather_of[scene] = (meta["weather"]["preset"], meta["map_name"])
             weather, map_name = weather_of[scene]
             if weathers is None or weather in weathers:
-                item = {kind: layout.frame_file(scene, kind, frame)
-                        for kind in ("flow", "valid", "semantic")}
-                item.update(img1=layout.frame_file(scene, "color", frame),
-                            img2=layout.frame_file(scene, "color", frame + 1),
-                            meta={"scene": scene, "frame": frame, "weather": weather,
-                                  "map": map_name})
-                items.append(item)
+                for face in self.faces or (None,):
+                    item = {kind: layout.frame_file(scene, kind, frame, face)
+                            for kind in ("flow", "valid", "semantic")}
+                    item.update(img1=layout.frame_file(scene, "color", frame, face),
+                                img2=layout.frame_file(scene, "color", frame + 1, face),
+                                meta={"scene": scene, "frame": frame, "weather": weather,
+                                      "map": map_name, "face": face})
+                    items.append(item)
         return items
 
     def _panoflow_items(self, split, weathers):
@@ -101,6 +156,19 @@ class FlowScape:
     def __len__(self):
         return len(self.items)
 
+    def __rmul__(self, times):
+        repeated = copy.copy(self)
+        repeated.items = self.items * int(times)
+        return repeated
+
+    __mul__ = __rmul__
+
+    def __add__(self, other):
+        return Concat([self, other])
+
+    def __radd__(self, other):
+        return Concat([other, self])
+
     def sample(self, index):
         """The item as numpy arrays (H x W x C), before the transform and tensors."""
         item = self.items[index]
@@ -110,9 +178,15 @@ class FlowScape:
         valid = known.copy()
         if "valid" in item:
             valid &= read_image(item["valid"])[..., 0] > 0
+        panorama = self.faces is None
+        if panorama and self.exclude_poles > 0:
+            valid &= pole_mask(valid.shape[0], self.exclude_poles)[:, None]
+        if self.max_flow is not None:
+            valid &= np.hypot(flow[..., 0], flow[..., 1]) < self.max_flow
+        classic = panorama and self.flow_mode == "classic"
         sample = {"img1": read_image(item["img1"])[..., :3].astype(np.float32),
                   "img2": read_image(item["img2"])[..., :3].astype(np.float32),
-                  "flow": classic_flow(flow) if self.flow_mode == "classic" else flow,
+                  "flow": classic_flow(flow) if classic else flow,
                   "valid": valid.astype(np.float32), "meta": dict(item["meta"])}
         if self.exclude_sky or "semantic" in self.extras:
             semantic = read_image(item["semantic"])[..., 0].astype(np.int64)

@@ -101,11 +101,50 @@ def read_png(path):
     return rows.reshape(height, width, channels)
 
 
+def _read_openimageio(path, oiio):
+    image = oiio.ImageInput.open(str(path))
+    if image is None:
+        raise ValueError(f"{path}: {oiio.geterror().splitlines()[0] if oiio.geterror() else 'cannot read'}")
+    try:
+        spec = image.spec()
+        pixels = image.read_image(spec.format)  # uint8, uint16 or float as stored
+        if pixels is None:
+            raise ValueError(f"{path}: {image.geterror().splitlines()[0]}")
+    finally:
+        image.close()
+    pixels = np.asarray(pixels).reshape(spec.height, spec.width, spec.nchannels)
+    return pixels.astype(np.float32) if pixels.dtype == np.float16 else pixels
+
+
+def _read_pillow(path, pillow):
+    try:
+        with pillow.open(path) as image:
+            pixels = np.asarray(image)
+    except (OSError, ValueError) as error:
+        raise ValueError(f"{path}: {error}") from None
+    if pixels.dtype == np.int32:  # Pillow's mode "I" holds a 16-bit grey PNG
+        pixels = pixels.astype(np.uint16)
+    return pixels[..., None] if pixels.ndim == 2 else pixels
+
+
 def read_image(path):
-    """H x W x C array in the file's own type (uint8 or uint16)."""
+    """H x W x C array in the file's own type (uint8, uint16, float32 for EXR). Decoded by the
+    flowscape_native extension when it is built, else by Debian's python3-openimageio (PNG, JPEG,
+    EXR), else Pillow (python3-pil: PNG, JPEG), else a numpy PNG decoder."""
     if _native is not None:
         return _native.read_image(str(path))
+    try:
+        import OpenImageIO
+        return _read_openimageio(path, OpenImageIO)
+    except ImportError:
+        pass
+    if not str(path).lower().endswith(".exr"):
+        try:
+            from PIL import Image
+            return _read_pillow(path, Image)
+        except ImportError:
+            pass
     if str(path).lower().endswith(".png"):
         return read_png(path)
-    raise ValueError(f"{path}: reading this format needs the flowscape_native extension "
-                     "(build the toolkit with CMake)")
+    raise ValueError(f"{path}: reading this format without the flowscape_native extension needs "
+                     "python3-openimageio (EXR, PNG, JPEG) or python3-pil (PNG, JPEG)")

@@ -213,17 +213,51 @@ def test_bad_input_is_named(tmp_path, yaw_release):
         io.read_png(bad)
 
 
-def test_the_package_installs_with_pip(tmp_path):
+def test_the_package_installs_offline_and_reads_a_release_without_the_extension(tmp_path,
+                                                                              tiny_release):
     source = os.path.join(os.path.dirname(__file__), "..", "..", "python")
     venv = tmp_path / "venv"
     subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(venv)], check=True)
     subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--no-build-isolation", "--no-index",
                     os.path.abspath(source)], check=True, capture_output=True, cwd=tmp_path)
-    found = subprocess.run([str(venv / "bin" / "python"), "-c",
-                            "import flowscape; print(flowscape.__file__)"],
-                           check=True, capture_output=True, text=True, cwd=tmp_path,
-                           env={"PATH": os.environ.get("PATH", "")}).stdout
-    assert str(venv) in found
+    script = """import sys, flowscape
+print(flowscape.__file__)
+assert not flowscape.native_available()
+tree = flowscape.FlowScape(sys.argv[1] + "/panoflow", "train")   # JPEG images
+release = flowscape.FlowScape(sys.argv[1], "train", exclude_sky=True)   # PNG images
+img1, img2, flow, valid = tree[0]
+assert img1.shape[0] == 3 and float(img1.max()) > 0
+assert release[0][0].shape == img1.shape
+layout = flowscape.ReleaseLayout(sys.argv[1])
+depth = flowscape.read_image(layout.frame_file("map00_seq00", "depth", 0))   # EXR
+assert depth.dtype.name == "float32" and depth.shape[2] == 1
+"""
+    found = subprocess.run([str(venv / "bin" / "python"), "-c", script, str(tiny_release)],
+                           capture_output=True, text=True, cwd=tmp_path,
+                           env={"PATH": os.environ.get("PATH", "")})
+    assert found.returncode == 0, found.stderr
+    assert str(venv) in found.stdout
+
+
+def test_pillow_and_openimageio_read_what_the_extension_reads(tiny_release, monkeypatch):
+    pytest.importorskip("PIL")
+    pytest.importorskip("OpenImageIO")
+    layout = flowscape.ReleaseLayout(tiny_release)
+    files = [layout.frame_file("map00_seq00", kind, 0) for kind in ("color", "instance", "valid")]
+    files.append(str(tiny_release / "panoflow/train") + "/" + next(
+        os.path.join(w, "img", s, f) for w in os.listdir(tiny_release / "panoflow/train")
+        for s in os.listdir(tiny_release / "panoflow/train" / w / "img")
+        for f in sorted(os.listdir(tiny_release / "panoflow/train" / w / "img" / s))))
+    expected = [flowscape.read_image(f) for f in files]
+    monkeypatch.setattr(io, "_native", None)
+    for f, e in zip(files, expected):
+        assert np.array_equal(io.read_image(f), e)  # python3-openimageio
+    monkeypatch.setitem(__import__("sys").modules, "OpenImageIO", None)
+    for f, e in zip(files, expected):
+        got = io.read_image(f)  # Pillow
+        assert got.dtype == e.dtype and got.shape == e.shape
+        if not f.endswith(".jpg"):  # JPEG decoders may round differently
+            assert np.array_equal(got, e)
 
 
 def test_the_layout_in_the_manifest_finds_every_file_of_a_release(tiny_release):

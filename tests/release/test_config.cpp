@@ -90,3 +90,12 @@ TEST_CASE("shards given as K/N are parsed and checked") {
   CHECK_THROWS_WITH(parse_shard("5/5", config), Catch::Contains("shard K/N needs 0 <= K < N"));
   CHECK_THROWS_WITH(parse_shard("two", config), Catch::Contains("--shard wants K/N"));
 }
+
+TEST_CASE("the resolution option takes the height or HEIGHTxWIDTH") {
+  CHECK(parse_resolution("512") == 512);
+  CHECK(parse_resolution("512x1024") == 512);
+  CHECK_THROWS_WITH(parse_resolution("512x1000"),
+                    Catch::Contains("twice as wide as high (512x1024)"));
+  for (const char* bad : {"", "x", "abc", "64x", "x128", "64x128x", "-5x-10", "99999999999"})
+    CHECK_THROWS_WITH(parse_resolution(bad), Catch::Contains("--resolution wants the height"));
+}

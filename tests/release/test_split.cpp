@@ -12,7 +12,8 @@ TEST_CASE("the default release is the paper's FlowScape and its split is 14 of 6
   const std::vector<SequencePlan> plans = plan_sequences(config);
   REQUIRE(plans.size() == 64);
   std::vector<SequenceInfo> sequences;
-  for (const SequencePlan& p : plans) sequences.push_back({p.name, p.weather, config.frames});
+  for (const SequencePlan& p : plans)
+    sequences.push_back({p.name, p.weather, p.weather, config.frames});
   CHECK(sequences.front().name == "map00_seq00");
   CHECK(sequences.back().name == "map07_seq07");
   const Split split = split_sequences(sequences, 0);
@@ -28,4 +29,27 @@ TEST_CASE("the default release is the paper's FlowScape and its split is 14 of 6
     for (const SequenceInfo& t : split.train) REQUIRE(s.name != t.name);
   CHECK(split_sequences(sequences, 0).test.front().name == split.test.front().name);
   CHECK(split_sequences(sequences, 1).test.front().name != split.test.front().name);
+}
+
+TEST_CASE("splits of small releases are never empty") {
+  const auto sequence = [](const char* name, const char* weather) {
+    return SequenceInfo{name, weather, weather, 4};
+  };
+  // the demo: one sunny and one rain sequence, each alone in its weather
+  const std::vector<SequenceInfo> demo{sequence("map00_seq00", "sunny"),
+                                       sequence("map00_seq01", "rain")};
+  for (std::uint64_t seed = 0; seed < 8; ++seed) {
+    const Split split = split_sequences(demo, seed);
+    REQUIRE((split.train.size() == 1 && split.test.size() == 1));
+    CHECK(split.train.front().name != split.test.front().name);
+  }
+  // two weathers with two sequences each: one of each goes to test
+  std::vector<SequenceInfo> four = demo;
+  four.push_back(sequence("map00_seq02", "sunny"));
+  four.push_back(sequence("map00_seq03", "rain"));
+  const Split split = split_sequences(four, 3);
+  CHECK((split.train.size() == 2 && split.test.size() == 2));
+  CHECK(split.test.front().weather != split.test.back().weather);
+  CHECK_THROWS_WITH(split_sequences({sequence("map00_seq00", "sunny")}, 0),
+                    Catch::Contains("a split needs at least 2 sequences, the release has 1"));
 }

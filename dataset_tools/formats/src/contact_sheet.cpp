@@ -32,6 +32,21 @@ Image<std::uint8_t> contact_sheet(const std::vector<std::vector<Image<std::uint8
   return sheet;
 }
 
+void label_tile(Image<std::uint8_t>& tile, const std::string& text) {
+  if (tile.channels != 3) throw std::invalid_argument("label_tile: needs an RGB tile");
+  cv::Mat mat(tile.height, tile.width, CV_8UC3, tile.data.data());
+  const double scale = std::clamp(tile.width / 700.0, 0.3, 1.5);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 1, &baseline);
+  const int pad = std::max(2, size.height / 3);
+  cv::rectangle(mat,
+                cv::Rect(0, 0, std::min(tile.width, size.width + 2 * pad),
+                         std::min(tile.height, size.height + baseline + 2 * pad)),
+                cv::Scalar(20, 20, 20), cv::FILLED);
+  cv::putText(mat, text, cv::Point(pad, pad + size.height), cv::FONT_HERSHEY_SIMPLEX, scale,
+              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
 Image<std::uint8_t> shrink_to_width(const Image<std::uint8_t>& image, int width) {
   if (image.width <= width) return image;
   const int height = std::max(1, image.height * width / image.width);

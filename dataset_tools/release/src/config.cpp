@@ -128,6 +128,28 @@ ReleaseConfig resolve_config(const ConfigSources& sources) {
   return release_config_from_json(sources.command_line, config);
 }
 
+int parse_resolution(const std::string& text) {
+  const char* end = text.data() + text.size();
+  int height = 0, width = 0;
+  const std::from_chars_result h_read = std::from_chars(text.data(), end, height);
+  bool whole = h_read.ec == std::errc() && height > 0;
+  if (whole && h_read.ptr != end) {
+    whole = *h_read.ptr == 'x';
+    const std::from_chars_result w_read = std::from_chars(h_read.ptr + 1, end, width);
+    whole = whole && w_read.ec == std::errc() && w_read.ptr == end;
+    if (whole && std::int64_t(width) != 2 * std::int64_t(height))
+      throw std::invalid_argument("--resolution " + text +
+                                  ": an equirectangular frame is twice as wide as high (" +
+                                  std::to_string(height) + "x" + std::to_string(2 * height) + ")");
+  }
+  if (!whole)
+    throw std::invalid_argument(
+        "--resolution wants the height or HEIGHTxWIDTH, e.g. 512 or "
+        "512x1024 (got \"" +
+        text + "\")");
+  return height;
+}
+
 void parse_shard(const std::string& text, ReleaseConfig& config) {
   int k = -1, n = -1;
   const char* end = text.data() + text.size();

@@ -31,6 +31,13 @@ Pose pose_from_row_major(const nlohmann::json& values) {
 
 std::string SequenceMeta::weather_preset() const { return weather.at("preset").get<std::string>(); }
 
+std::string SequenceMeta::base_weather() const {
+  const auto number = [&](const char* key) { return weather.value(key, 0.0); };
+  if (number("precipitation") > 0) return "rain";
+  if (number("fog_density") >= 0.01) return "fog";
+  return number("cloudiness") >= 0.5 ? "cloud" : "sunny";
+}
+
 nlohmann::json to_json(const SequenceMeta& m) {
   nlohmann::json poses = nlohmann::json::array();
   for (const Pose& pose : m.poses) poses.push_back(pose_row_major(pose));

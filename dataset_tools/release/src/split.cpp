@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "flowscape/core/random.h"
 #include "flowscape/formats/complete_file.h"
+#include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
@@ -30,12 +32,29 @@ std::string pair_lines(const std::vector<SequenceInfo>& sequences) {
   return text;
 }
 
-void link_or_copy(const fs::path& from, const fs::path& to) {
-  write_atomically(to, [&](const fs::path& temporary) {
-    std::error_code error;
-    fs::create_hard_link(from, temporary, error);
-    if (error) fs::copy_file(from, temporary, fs::copy_options::overwrite_existing);
-  });
+// The release's ERP flow of a frame in the tree's conventions: classic or 360-degree, and sky
+// (infinite depth) and, if asked, occluded pixels (valid = 0) marked unknown (kUnknownFlow), which
+// the public loader's |u|, |v| < 1000 mask drops.
+Image<float> panoflow_flow(const fs::path& sequence, int frame, const PanoflowOptions& o) {
+  const auto file = [&](const char* kind) {
+    return sequence / frame_file(output_kind(kind), std::nullopt, frame);
+  };
+  Image<float> flow = read_flo(file("flow")).uv;
+  const Image<float> depth = o.sky_invalid ? read_image<float>(file("depth")) : Image<float>();
+  const Image<std::uint8_t> valid =
+      o.occluded_invalid ? read_image<std::uint8_t>(file("valid")) : Image<std::uint8_t>();
+  for (int y = 0; y < flow.height; ++y)
+    for (int x = 0; x < flow.width; ++x) {
+      float* f = flow.pixel(x, y);
+      const bool sky = o.sky_invalid && std::isinf(*depth.pixel(x, y));
+      const bool occluded = o.occluded_invalid && *valid.pixel(x, y) == 0;
+      if (sky || occluded || !is_known_flow(f[0], f[1])) {
+        f[0] = f[1] = kUnknownFlow;
+        continue;
+      }
+      f[0] = float(erp_flow_u(f[0], x + 0.5, flow.width, o.flow));
+    }
+  return flow;
 }
 
 }  // namespace
@@ -50,7 +69,7 @@ std::vector<SequenceInfo> read_release_sequences(const fs::path& release) {
   std::vector<SequenceInfo> sequences;
   for (const auto& entry : fs::directory_iterator(root)) {
     const SequenceMeta meta = read_meta(entry.path());
-    sequences.push_back({meta.scene, meta.weather_preset(), meta.frames});
+    sequences.push_back({meta.scene, meta.weather_preset(), meta.base_weather(), meta.frames});
   }
   std::sort(sequences.begin(), sequences.end(),
             [](const SequenceInfo& a, const SequenceInfo& b) { return a.name < b.name; });
@@ -58,6 +77,9 @@ std::vector<SequenceInfo> read_release_sequences(const fs::path& release) {
 }
 
 Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t seed) {
+  if (sequences.size() < 2)
+    throw std::invalid_argument("a split needs at least 2 sequences, the release has " +
+                                std::to_string(sequences.size()));
   std::map<std::string, std::vector<SequenceInfo>> by_weather;
   for (const SequenceInfo& s : sequences) by_weather[s.weather].push_back(s);
   Split split;
@@ -70,6 +92,12 @@ Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t 
     for (int k = 0; k < int(group.size()); ++k)
       (k < tests ? split.test : split.train).push_back(group[k]);
   }
+  if (split.test.empty()) {  // every weather has one sequence: one of them (by the seed) is test
+    Random random(seed);
+    const std::size_t pick = random.below(int(split.train.size()));
+    split.test.push_back(split.train[pick]);
+    split.train.erase(split.train.begin() + std::ptrdiff_t(pick));
+  }
   for (auto* side : {&split.train, &split.test})
     std::sort(side->begin(), side->end(),
               [](const SequenceInfo& a, const SequenceInfo& b) { return a.name < b.name; });
@@ -81,16 +109,39 @@ void write_split_files(const fs::path& release, const Split& split) {
   write_text(split_file(release, "test"), pair_lines(split.test));
 }
 
-void write_panoflow_tree(const fs::path& release, const Split& split) {
+namespace {
+
+nlohmann::json to_json(const PanoflowOptions& o) {
+  return {{"flow", o.flow == FlowMode::Classic ? "classic" : "360"},
+          {"sky", o.sky_invalid ? "invalid" : "kept"},
+          {"occluded", o.occluded_invalid ? "invalid" : "kept"}};
+}
+
+}  // namespace
+
+std::vector<std::string> write_panoflow_tree(const fs::path& release, const Split& split,
+                                             const PanoflowOptions& options) {
+  const fs::path tree = release / "panoflow", conventions = tree / "flowscape.json";
+  if (fs::exists(tree) && (!fs::exists(conventions) || read_json(conventions) != to_json(options)))
+    fs::remove_all(tree);  // made with other conventions: none of its flow files can be kept
   struct Job {
     fs::path sequence, target;
     int frame;
     bool flow;
   };
   std::vector<Job> jobs;
+  std::vector<std::string> empty;
+  for (const auto& [side, sequences] : {std::pair{"train", &split.train}, {"test", &split.test}})
+    for (const char* weather : kBaseWeathers) {
+      fs::create_directories(tree / side / weather / "img");
+      fs::create_directories(tree / side / weather / "flow");
+      if (std::none_of(sequences->begin(), sequences->end(),
+                       [&](const SequenceInfo& s) { return s.base_weather == weather; }))
+        empty.push_back(std::string(side) + "/" + weather);
+    }
   for (const auto& [side, sequences] : {std::pair{"train", &split.train}, {"test", &split.test}})
     for (const SequenceInfo& s : *sequences) {
-      const fs::path base = release / "panoflow" / side / s.weather;
+      const fs::path base = tree / side / s.base_weather;
       for (int f = 0; f < s.frames; ++f) {
         const fs::path sequence = sequence_dir(release, s.name);
         jobs.push_back({sequence, base / "img" / s.name, f, false});
@@ -103,13 +154,15 @@ void write_panoflow_tree(const fs::path& release, const Split& split) {
     const std::string name = frame_name(job.frame);
     const fs::path target = job.target / (name + (job.flow ? ".flo" : ".jpg"));
     if (is_complete_file(target)) return;  // resumed: whole files only
-    const fs::path source = job.sequence / frame_file(output_kind(job.flow ? "flow" : "color"),
-                                                      std::nullopt, job.frame);
+    const fs::path source =
+        job.sequence / frame_file(output_kind("color"), std::nullopt, job.frame);
     if (job.flow)
-      link_or_copy(source, target);
+      write_flo(target, panoflow_flow(job.sequence, job.frame, options).view());
     else
       write_image(target, read_image<std::uint8_t>(source));
   });
+  write_text(conventions, to_json(options).dump(1) + "\n");
+  return empty;
 }
 
 }  // namespace flowscape

@@ -50,6 +50,9 @@ struct ConfigSources {
 // Errors name the config file where it is the file's value that is wrong.
 ReleaseConfig resolve_config(const ConfigSources& sources);
 
+// "512" or "512x1024" -> the ERP height 512; throws std::invalid_argument for other text or a width
+// that is not twice the height.
+int parse_resolution(const std::string& text);
 // "K/N" -> config.shard = K, config.shards = N; throws std::invalid_argument for other text.
 void parse_shard(const std::string& text, ReleaseConfig& config);
 // "KIND=FILE" options (--model) -> a models map; throws std::invalid_argument for other text.

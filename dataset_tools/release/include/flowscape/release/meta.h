@@ -1,6 +1,7 @@
 #pragma once
 // meta.json, one per sequence (design.md): what the sequence is (map, weather, seed), its cameras
 // and the rig pose of every frame. Read and written here only.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -26,7 +27,13 @@ struct SequenceMeta {
   int face_size = 0;         // cube faces (focal face_size / 2); 0 = no faces
 
   std::string weather_preset() const;
+  // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from
+  // its recorded weather: "rain" with any precipitation, else "fog" from a fog density of 0.01 /m,
+  // else "cloud" from half cover, else "sunny" (hard_rain -> rain, clear_sunset -> sunny, ...).
+  std::string base_weather() const;
 };
+
+inline constexpr std::array<const char*, 4> kBaseWeathers{"cloud", "fog", "rain", "sunny"};
 
 nlohmann::json to_json(const SequenceMeta& meta);
 SequenceMeta meta_from_json(const nlohmann::json& json);  // throws std::invalid_argument

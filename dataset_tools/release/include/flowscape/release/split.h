@@ -8,10 +8,13 @@
 #include <string>
 #include <vector>
 
+#include "flowscape/stitcher/geometry.h"
+
 namespace flowscape {
 
 struct SequenceInfo {
-  std::string name, weather;
+  std::string name, weather;  // weather: the preset (splits are stratified by it)
+  std::string base_weather;   // the PanoFlow folder it goes to (SequenceMeta::base_weather)
   int frames;
 };
 // Every sequence of a release, from sequences/*/meta.json (sorted by name).
@@ -21,12 +24,27 @@ struct Split {
   std::vector<SequenceInfo> train, test;
 };
 // Per weather, round(n * share) sequences go to test (share 0.2 for sunny, 0.25 for the others),
-// at least one and never all when there are two or more; which ones is decided by the seed.
+// at least one and never all when there are two or more; which ones is decided by the seed. When
+// every weather has a single sequence, one of them (by the seed) is the test split, so neither
+// side is ever empty; fewer than 2 sequences is an error.
 Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t seed);
 
 // splits/train.txt and splits/test.txt: one flow pair per line, "<scene> <frame>".
 void write_split_files(const std::filesystem::path& release, const Split& split);
-// The PanoFlow tree (JPEG images, the .flo files hard-linked or copied); existing files are kept.
-void write_panoflow_tree(const std::filesystem::path& release, const Split& split);
+// How the tree stores flow. The defaults are the public FlowScape's conventions (docs/release.md):
+// classic ERP flow, and the sky marked unknown so the public loader's |u|, |v| < 1000 mask drops
+// it.
+struct PanoflowOptions {
+  FlowMode flow = FlowMode::Classic;
+  bool sky_invalid = true;
+  bool occluded_invalid = false;  // also pixels whose target is hidden in the next frame
+};
+// The PanoFlow tree: panoflow/{train,test}/{cloud,fog,rain,sunny} always all there (sequences of
+// other presets filed under their base weather), JPEG images, flow in `options`' conventions, and
+// panoflow/flowscape.json recording them. A tree with other conventions is rewritten; whole files
+// of a tree with the same ones are kept. Returns the "<split>/<weather>" folders left empty.
+std::vector<std::string> write_panoflow_tree(const std::filesystem::path& release,
+                                             const Split& split,
+                                             const PanoflowOptions& options = {});
 
 }  // namespace flowscape
