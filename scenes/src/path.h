@@ -1,5 +1,8 @@
 #pragma once
-// Internal: a polyline in the ground plane with arc-length parameter.
+// Internal: a path in the ground plane with arc-length parameter, made of pieces whose curvature
+// changes linearly with length: straight lines, circular arcs and clothoid transitions between
+// them. Heading and curvature are continuous along a rounded_polyline, so an actor driving it at a
+// smoothly changing speed turns with a continuous yaw rate (no judder).
 #include <Eigen/Core>
 #include <vector>
 
@@ -7,23 +10,37 @@ namespace flowscape {
 
 struct PathPoint {
   Eigen::Vector2d position, direction;  // unit direction of travel
+  double curvature = 0;                 // 1/m, positive turning left
 };
 
 class Path {
  public:
   Path() = default;
-  explicit Path(std::vector<Eigen::Vector2d> points);
-  double length() const { return lengths_.empty() ? 0 : lengths_.back(); }
+  explicit Path(std::vector<Eigen::Vector2d> points);  // a polyline of straight pieces
+  double length() const { return pieces_.empty() ? 0 : pieces_.back().s0 + pieces_.back().length; }
   PathPoint at(double s) const;  // clamped to [0, length]
-  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+
+  // Where an empty path starts, and its heading.
+  void start_at(const Eigen::Vector2d& start, double heading);
+  // A piece from the end, continuing its heading: curvature from `curvature` changing linearly at
+  // `curvature_rate` per metre over `length`.
+  void append(double length, double curvature, double curvature_rate);
+  // A straight piece from the end to `target` (a kink if `target` is off the current heading).
+  void line_to(const Eigen::Vector2d& target);
 
  private:
-  std::vector<Eigen::Vector2d> points_;
-  std::vector<double> lengths_;  // cumulative, from 0
+  struct Piece {
+    Eigen::Vector2d start;
+    double heading, curvature, curvature_rate, s0, length;
+  };
+  static PathPoint evaluate(const Piece& piece, double t);
+  std::vector<Piece> pieces_;
+  Eigen::Vector2d start_ = Eigen::Vector2d::Zero();
+  double heading_ = 0;
 };
 
-// Straight lines joined by circular arcs of `radius` at the corners (smaller where a side is
-// short).
+// Straight lines joined at the corners by a circular arc of `radius` between two clothoid
+// transitions (each a quarter of the turn; the whole corner shrunk where a side is short).
 Path rounded_polyline(const std::vector<Eigen::Vector2d>& corners, double radius, bool closed);
 // From `a` heading `da` to `b` heading `db` (perpendicular or parallel): straight, or two lines
 // meeting at a corner rounded with `radius`.
