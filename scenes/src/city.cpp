@@ -175,9 +175,27 @@ void validate(const CityConfig& c) {
 
 Pose City::rig(double t) const { return rig_track()(t); }
 
+RigMount random_mount(std::uint64_t seed) {
+  Random random(mix_bits(seed ^ 0x6d6f756e74ull));  // "mount": its own stream
+  const double degree = kPi / 180;
+  return {random.uniform(1.5, 2.0), random.uniform(0.2, 0.6) * degree,
+          random.uniform(0.1, 0.4) * degree, random.uniform(0, 2 * kPi),
+          random.uniform(0, 2 * kPi)};
+}
+
+Pose mount_pose(const RigMount& m, double distance) {
+  const double pitch =
+      m.pitch_amplitude * std::sin(2 * kPi * distance / RigMount::kPitchWavelength + m.pitch_phase);
+  const double roll =
+      m.roll_amplitude * std::sin(2 * kPi * distance / RigMount::kRollWavelength + m.roll_phase);
+  return Pose(Eigen::Translation3d(0, 0, m.height)) *
+         Pose(Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY())) *
+         Pose(Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()));
+}
+
 PoseTrack City::rig_track() const {
-  return [ego = ego, height = camera_height](double t) {
-    return ego(t) * Pose(Eigen::Translation3d(0, 0, height));
+  return [ego = ego, distance = ego_distance, mount = mount](double t) {
+    return ego(t) * mount_pose(mount, distance(t));
   };
 }
 
@@ -200,6 +218,8 @@ City make_city(const CityConfig& config) {
       simulate_walkers(*layout, loops, spawned.walkers, config.duration);
   const auto ego = std::make_shared<const Track>(vehicle_tracks[0]);
   city.ego = [ego](double t) { return ego->pose(t); };
+  city.ego_distance = [ego](double t) { return ego->distance_at(t); };
+  city.mount = random_mount(config.seed);
   const std::map<ActorKind, Mesh> models = user_models(config, city.scene);
   const auto add = [&](ActorKind kind, const Track& track, int lane, double s, double speed) {
     const auto instance = std::uint16_t(city.scene.actors.size() + 1);
@@ -238,7 +258,7 @@ nlohmann::json to_json(const City& city) {
           {"ego_start", c.ego_start},
           {"duration", c.duration},
           {"models", c.models},
-          {"camera_height", city.camera_height},
+          {"camera_height", city.mount.height},
           {"ego", {{"lane", ego.lane}, {"s", ego.s}}},
           {"start_points", city.start_points.size()},
           {"actors", actors}};

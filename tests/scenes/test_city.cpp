@@ -374,3 +374,32 @@ TEST_CASE("yaw rates never jump: headings follow curves with continuous curvatur
     }
   }
 }
+
+TEST_CASE("the camera rig sways with the distance driven and sits at a per-sequence height") {
+  const double degree = kPi / 180;
+  std::set<double> heights;  // of the cities' seed and of seeds 0..7
+  for (int map = 0; map < kMapCount; ++map) {
+    const City city = make_city(busy(map));
+    const RigMount& m = city.mount;
+    INFO("map " << map_name(map));
+    CHECK((m.height >= 1.5 && m.height <= 2.0));
+    CHECK((m.pitch_amplitude >= 0.2 * degree && m.pitch_amplitude <= 0.6 * degree));
+    CHECK((m.roll_amplitude >= 0.1 * degree && m.roll_amplitude <= 0.4 * degree));
+    heights.insert(m.height);
+    for (int frame = 0; frame <= 100; frame += 5) {
+      const double t = frame * kFrame, d = city.ego_distance(t);
+      // the rig in the ego's frame, by hand: raised by the height, pitched about y, rolled about x
+      const double pitch = m.pitch_amplitude * std::sin(2 * kPi * d / 9 + m.pitch_phase);
+      const double roll = m.roll_amplitude * std::sin(2 * kPi * d / 14 + m.roll_phase);
+      const double cp = std::cos(pitch), sp = std::sin(pitch), cr = std::cos(roll),
+                   sr = std::sin(roll);
+      Eigen::Matrix3d expected;
+      expected << cp, sp * sr, sp * cr, 0, cr, -sr, -sp, cp * sr, cp * cr;
+      const Pose relative = city.ego(t).inverse() * city.rig(t);
+      REQUIRE((relative.linear() - expected).norm() < 1e-12);
+      REQUIRE((relative.translation() - Eigen::Vector3d(0, 0, m.height)).norm() < 1e-12);
+    }
+  }
+  for (std::uint64_t seed = 0; seed < 8; ++seed) heights.insert(random_mount(seed).height);
+  CHECK(heights.size() >= 8);  // every seed (every sequence of a release) its own mount
+}

@@ -51,7 +51,11 @@ nlohmann::json to_json(const SequenceMeta& m) {
       {"frames", m.frames},
       {"fps", m.fps},
       {"erp", {{"width", 2 * m.erp_height}, {"height", m.erp_height}, {"flow", "360-degree"}}},
-      {"camera", {{"height_above_ego", m.camera_height}, {"frame", kRigFrame}}},
+      {"camera",
+       {{"height_above_ego", m.camera_height},
+        {"pitch_sway_degrees", m.camera_pitch_sway},
+        {"roll_sway_degrees", m.camera_roll_sway},
+        {"frame", kRigFrame}}},
       {"poses", poses},
       {"city", m.city}};
   if (m.face_size > 0) {
@@ -75,6 +79,8 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.fps = j.at("fps").get<double>();
     m.erp_height = j.at("erp").at("height").get<int>();
     m.camera_height = j.at("camera").at("height_above_ego").get<double>();
+    m.camera_pitch_sway = j.at("camera").value("pitch_sway_degrees", 0.0);
+    m.camera_roll_sway = j.at("camera").value("roll_sway_degrees", 0.0);
     for (const nlohmann::json& pose : j.at("poses")) m.poses.push_back(pose_from_row_major(pose));
     m.city = j.value("city", nlohmann::json());
     if (j.contains("cube")) m.face_size = j.at("cube").at("face_size").get<int>();

@@ -55,7 +55,9 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.weather = to_json(s.weather);
   meta.frames = config.frames, meta.fps = kFrameRate;
   meta.erp_height = config.height;
-  meta.camera_height = s.city.camera_height;
+  meta.camera_height = s.city.mount.height;
+  meta.camera_pitch_sway = s.city.mount.pitch_amplitude * 180 / kPi;
+  meta.camera_roll_sway = s.city.mount.roll_amplitude * 180 / kPi;
   for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(Sequence::time(f)));
   meta.city = to_json(s.city);
   meta.face_size = config.cube ? config.face_size : 0;

@@ -47,23 +47,38 @@ struct ActorRecord {
   double s, speed;
 };
 
+// How the camera rig sits on the ego, drawn per city seed (per sequence in a release): its height
+// above the ego's origin and the sway of a sprung body, pitch and roll that oscillate with the
+// distance driven (bumps every 9 m and 14 m), so a standing car is still and a moving one sways
+// smoothly. Ranges: height 1.5-2.0 m, pitch amplitude 0.2-0.6 degrees, roll 0.1-0.4 degrees.
+struct RigMount {
+  double height = 1.7;                                                 // m
+  double pitch_amplitude = 0, roll_amplitude = 0;                      // radians
+  double pitch_phase = 0, roll_phase = 0;                              // radians
+  static constexpr double kPitchWavelength = 9, kRollWavelength = 14;  // m
+};
+RigMount random_mount(std::uint64_t seed);
+// The rig relative to the ego after driving `distance` metres.
+Pose mount_pose(const RigMount& mount, double distance);
+
 // Ground areas of the layout, for placing and checking things.
 enum class Area : std::uint8_t { Road, Junction, SideWalk, Block, Water, Outside };
 
 struct City {
   CityConfig config;
   Scene scene;
-  std::vector<StartPoint> start_points;  // 100 .. 120 per map
-  std::vector<ActorRecord> actors;       // in scene.actors order
-  PoseTrack ego;                         // the ego vehicle (x forward, z up, on the road)
-  Eigen::Vector2d ego_size{4.5, 1.9};    // its length and width (it is not drawn)
-  double camera_height = 1.7;            // the rig sits this high above the ego's origin
+  std::vector<StartPoint> start_points;        // 100 .. 120 per map
+  std::vector<ActorRecord> actors;             // in scene.actors order
+  PoseTrack ego;                               // the ego vehicle (x forward, z up, on the road)
+  Eigen::Vector2d ego_size{4.5, 1.9};          // its length and width (it is not drawn)
+  std::function<double(double)> ego_distance;  // metres the ego has driven at time t
+  RigMount mount;                              // where the camera rig sits on the ego
   // Footprints (4 corners, counter-clockwise) of the buildings and other solid blocks.
   std::vector<std::array<Eigen::Vector2d, 4>> solids;
   std::function<Area(const Eigen::Vector2d&)> area_at;
   std::function<double(const Eigen::Vector2d&)> ground_height;
 
-  Pose rig(double t) const;     // the camera rig: ego pose raised by camera_height
+  Pose rig(double t) const;     // the camera rig: ego(t) * mount_pose(mount, ego_distance(t))
   PoseTrack rig_track() const;  // the same, as a track that does not refer to this City
 };
 

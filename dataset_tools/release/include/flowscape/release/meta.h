@@ -20,11 +20,12 @@ struct SequenceMeta {
   nlohmann::json weather;  // weather/'s record; its "preset" names the base preset
   int frames = 0;
   double fps = kFrameRate;
-  int erp_height = 0;        // width 2 x height; ERP flow is 360-degree
-  double camera_height = 0;  // of the rig above the ego vehicle's origin
-  std::vector<Pose> poses;   // per frame: rig (x forward, y left, z up) -> world
-  nlohmann::json city;       // scenes/' scene record (null when there is none)
-  int face_size = 0;         // cube faces (focal face_size / 2); 0 = no faces
+  int erp_height = 0;                                  // width 2 x height; ERP flow is 360-degree
+  double camera_height = 0;                            // of the rig above the ego vehicle's origin
+  double camera_pitch_sway = 0, camera_roll_sway = 0;  // amplitudes in degrees (RigMount)
+  std::vector<Pose> poses;  // per frame: rig (x forward, y left, z up) -> world
+  nlohmann::json city;      // scenes/' scene record (null when there is none)
+  int face_size = 0;        // cube faces (focal face_size / 2); 0 = no faces
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from
