@@ -98,7 +98,7 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
       const double length = layout.lanes[lane].path.length();
       if (length < size.length + 4) continue;
       const double s = random.uniform(size.length / 2 + 1, length - size.length / 2 - 1);
-      if (!near_the_ego(layout.lanes[lane].path.at(s).position, ego_spot, 40, attempt, random) ||
+      if (!near_the_ego(layout.lanes[lane].path.at(s).position, ego_spot, 30, attempt, random) ||
           !clear_of(out.vehicles, lane, s, size.length))
         continue;
       out.vehicles.push_back({size.length, size.width, lane, s, wish});
