@@ -16,8 +16,9 @@ namespace {
 
 constexpr const char* kTemporaryPrefix = ".partial-";
 
+// `what` and the OS error, when the call that failed set one (streams do not always).
 [[noreturn]] void fail(const fs::path& path, const std::string& what) {
-  throw FileError(path, what + ": " + std::strerror(errno));
+  throw FileError(path, errno ? what + ": " + std::strerror(errno) : what);
 }
 
 // A descriptor that closes itself if an error leaves it open.
@@ -32,6 +33,7 @@ void write_all(const fs::path& temporary, const fs::path& path, std::string_view
   Descriptor file{::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)};
   if (file.fd < 0) fail(path, "cannot create");
   while (!bytes.empty()) {
+    errno = 0;
     const ssize_t written = ::write(file.fd, bytes.data(), bytes.size());
     if (written < 0 && errno == EINTR) continue;
     if (written <= 0) fail(path, "cannot write");
@@ -113,6 +115,7 @@ std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
                               std::to_string(max_bytes) + ")");
   std::ifstream in(path, std::ios::binary);
   std::string bytes(size, '\0');
+  errno = 0;
   if (!in.read(bytes.data(), std::streamsize(size))) fail(path, "cannot read");
   return bytes;
 }
