@@ -17,9 +17,7 @@ namespace {
 
 // instance > 0 over non-sky (finite depth) pixels of one ERP frame
 double actor_share(const fs::path& sequence, int frame) {
-  const auto file = [&](const char* kind) {
-    return sequence / frame_file(output_kind(kind), std::nullopt, frame);
-  };
+  const auto file = [&](const char* kind) { return erp_file(sequence, kind, frame); };
   const Image<std::uint16_t> instance = read_image<std::uint16_t>(file("instance"));
   const Image<float> depth = read_image<float>(file("depth"));
   std::size_t actors = 0, ground = 0;

@@ -3,8 +3,8 @@ scratch folder holding links to build/, python/ and scripts/. Adaptations, so CI
 two commands of the first block are what CI itself runs (so only its `gen_flowscape --demo` part
 runs here); a release command without --demo runs as written with --check (options validated, the
 plan printed), then with its sizes swapped for a tiny release (1 map, 6 sequences, 3 frames, 16 x 32)
-so the commands after it have a dataset; Slurm is tested by slurm_test.sh; the placeholder folders
-CUBE, frames/ and flows/ are made from that dataset; `python3` is Debian's (/usr/bin first on the
+so the commands after it have a dataset; Slurm is tested by slurm_test.sh; the folders the README
+names by example (CUBE, frames/, flows/) are made from that dataset; `python3` is Debian's (/usr/bin first on the
 PATH, as on a fresh machine). Usage: readme_test.py REPO_ROOT BUILD_DIR"""
 import glob
 import os
@@ -43,7 +43,7 @@ def tiny(words):
     return out + TINY
 
 
-def make_placeholders(scratch):
+def make_example_inputs(scratch):
     sequence = os.path.join(scratch, "dataset", "sequences", "map00_seq00")
     if os.path.isdir(sequence) and not os.path.exists(os.path.join(scratch, "CUBE")):
         os.symlink(os.path.join(sequence, "cube"), os.path.join(scratch, "CUBE"))
@@ -81,7 +81,7 @@ def main():
                 else:
                     runs.append(words)
             for words in runs:
-                make_placeholders(scratch)
+                make_example_inputs(scratch)
                 code, tail = run(list(words), scratch)
                 print(f"{'ok' if code == 0 else 'FAILED'}: {shlex.join(words)}"
                       + ("" if code == 0 else f"  ({' '.join(tail)})"))

@@ -38,9 +38,7 @@ int main(int argc, char** argv) {
   const Projection erp = Projection::equirectangular(config.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames),
                     gt_next = renderer.ground_truth(erp, next);
-  const auto file = [&](const char* kind, int frame) {
-    return seq / frame_file(output_kind(kind), std::nullopt, frame);
-  };
+  const auto file = [&](const char* kind, int frame) { return erp_file(seq, kind, frame); };
   write_image(file("color", 0), linear_to_srgb8(renderer.color(erp, frames, {4, 2, 1}).view()));
   write_image(file("color", 1), linear_to_srgb8(renderer.color(erp, next, {4, 2, 2}).view()));
   write_flo(file("flow", 0), gt.flow.view());

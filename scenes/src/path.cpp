@@ -110,9 +110,9 @@ Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed
     if (std::abs(turn) < 1e-6 || std::abs(turn) > 3.1) continue;  // straight on, or a U-turn
     // the curve scales with its radius; shrink it to at most half of each side
     const double room = std::min((here - prev).norm(), (next - here).norm()) / 2;
-    const double fit = std::min(1.0, room / tangent_length(turn, radius));
-    rounded.push_back({here - fit * tangent_length(turn, radius) * d_in,
-                       std::atan2(d_in.y(), d_in.x()), turn, fit * radius});
+    const double tangent = tangent_length(turn, radius), fit = std::min(1.0, room / tangent);
+    rounded.push_back(
+        {here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn, fit * radius});
   }
   Path path;
   const V2 first = closed && !rounded.empty() ? rounded.front().start : corners.front();

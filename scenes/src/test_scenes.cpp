@@ -27,16 +27,22 @@ Scene textured_plane(double distance, double side) {
   return scene;
 }
 
-Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity) {
-  Scene scene = box_room(20);
+Actor sliding_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity,
+                  std::uint16_t material) {
   Actor box{7, {}, [centre, velocity](double t) {
               return Pose(Eigen::Translation3d(centre + velocity * t));
             }};
   Part body{{}, fixed_pose()};
   add_box(body.mesh, Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1),
           SemanticClass::Vehicles);
+  body.mesh.materials.assign(body.mesh.triangles.size(), material);
   box.parts.push_back(std::move(body));
-  scene.actors.push_back(std::move(box));
+  return box;
+}
+
+Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity) {
+  Scene scene = box_room(20);
+  scene.actors.push_back(sliding_box(centre, velocity));
   return scene;
 }
 

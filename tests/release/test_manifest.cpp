@@ -6,6 +6,7 @@
 #include "flowscape/core/files.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/sha256.h"
 #include "flowscape/release/writer.h"
 #include "temp_dir.h"
@@ -15,12 +16,6 @@ using namespace flowscape;
 namespace fs = std::filesystem;
 
 namespace {
-
-nlohmann::json read_json(const fs::path& path) {
-  nlohmann::json j;
-  std::ifstream(path) >> j;
-  return j;
-}
 
 // Shard `shard` of `shards` of `config` into `out`, with its shard manifest.
 void make_shard(ReleaseConfig config, int shard, int shards, const fs::path& out) {

@@ -192,13 +192,7 @@ Scene sunlit_street() {
   }
   scene.world.vertices.insert(scene.world.vertices.end(), ground.vertices.begin(),
                               ground.vertices.end());
-  Actor box{7, {}, [](double t) { return Pose(Eigen::Translation3d(6, 1 - 3 * t, -0.7)); }};
-  Part body{{}, fixed_pose()};
-  add_box(body.mesh, Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1),
-          SemanticClass::Vehicles);
-  body.mesh.materials.assign(body.mesh.triangles.size(), 2);
-  box.parts.push_back(std::move(body));
-  scene.actors.push_back(std::move(box));
+  scene.actors.push_back(sliding_box({6, 1, -0.7}, {0, -3, 0}, 2));
   scene.environment.sun_direction = Vec3(-0.5, 0.3, 0.8).normalized();  // lights the wall's face
   return scene;
 }

@@ -3,6 +3,7 @@
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/shapes.h"
+#include "flowscape/scenes/test_scenes.h"
 #include "warp_errors.h"
 
 using namespace flowscape;
@@ -33,15 +34,7 @@ Scene textured_wall(double box_speed) {
   scene.materials = {wall, paint};
   add_quad(scene.world, {8, 30, -5}, {8, -30, -5}, {8, -30, 15}, {8, 30, 15},
            {SemanticClass::Wall, 0});
-  Actor box{7, {}, [box_speed](double t) {
-              return Pose(Eigen::Translation3d(7, 0.5 - box_speed * t, -0.5));
-            }};
-  Part body{{}, fixed_pose()};
-  add_box(body.mesh, Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1),
-          SemanticClass::Vehicles);
-  body.mesh.materials.assign(body.mesh.triangles.size(), 1);
-  box.parts.push_back(std::move(body));
-  scene.actors.push_back(std::move(box));
+  scene.actors.push_back(sliding_box({7, 0.5, -0.5}, {0, -box_speed, 0}, 1));
   scene.environment.sun_direction = V3(-0.6, 0.3, 0.6).normalized();
   return scene;
 }

@@ -72,6 +72,10 @@ fs::path frame_file(const OutputKind& kind, View view, int frame) {
          (frame_name(frame) + std::string(kind.extension));
 }
 
+fs::path erp_file(const fs::path& sequence, std::string_view kind, int frame) {
+  return sequence / frame_file(output_kind(kind), std::nullopt, frame);
+}
+
 std::vector<fs::path> frame_files(int frame, int frames, bool cube) {
   std::vector<fs::path> files;
   std::vector<View> views{std::nullopt};

@@ -17,8 +17,6 @@ namespace flowscape {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr const char* kShardDir = "manifests";
-
 nlohmann::json file_entry(const fs::path& file) {
   return {{"sha256", sha256_file(file)}, {"bytes", fs::file_size(file)}};
 }

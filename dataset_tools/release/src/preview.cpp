@@ -11,17 +11,15 @@ namespace flowscape {
 namespace fs = std::filesystem;
 
 std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width) {
-  const auto erp_file = [&](const char* kind) {
-    return dir / frame_file(output_kind(kind), std::nullopt, frame);
-  };
-  const Image<std::uint8_t> color = read_image<std::uint8_t>(erp_file("color"));
+  const auto file = [&](const char* kind) { return erp_file(dir, kind, frame); };
+  const Image<std::uint8_t> color = read_image<std::uint8_t>(file("color"));
   Image<std::uint8_t> flow(color.width, color.height, 3);
-  if (fs::exists(erp_file("flow"))) {
-    const Flow uv = read_flow(erp_file("flow"));
-    const Image<std::uint8_t> valid = read_image<std::uint8_t>(erp_file("valid"));
+  if (fs::exists(file("flow"))) {
+    const Flow uv = read_flow(file("flow"));
+    const Image<std::uint8_t> valid = read_image<std::uint8_t>(file("valid"));
     flow = flow_to_color(uv.uv.view(), valid.view(), {});
   }
-  const Image<std::uint8_t> semantic = read_image<std::uint8_t>(erp_file("semantic"));
+  const Image<std::uint8_t> semantic = read_image<std::uint8_t>(file("semantic"));
   return {shrink_to_width(color, width), shrink_to_width(flow, width),
           shrink_to_width(semantic_to_color(semantic.view()), width)};
 }

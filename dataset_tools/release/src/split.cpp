@@ -36,13 +36,12 @@ std::string pair_lines(const std::vector<SequenceInfo>& sequences) {
 // (infinite depth) and, if asked, occluded pixels (valid = 0) marked unknown (kUnknownFlow), which
 // the public loader's |u|, |v| < 1000 mask drops.
 Image<float> panoflow_flow(const fs::path& sequence, int frame, const PanoflowOptions& o) {
-  const auto file = [&](const char* kind) {
-    return sequence / frame_file(output_kind(kind), std::nullopt, frame);
-  };
-  Image<float> flow = read_flo(file("flow")).uv;
-  const Image<float> depth = o.sky_invalid ? read_image<float>(file("depth")) : Image<float>();
+  Image<float> flow = read_flo(erp_file(sequence, "flow", frame)).uv;
+  const Image<float> depth =
+      o.sky_invalid ? read_image<float>(erp_file(sequence, "depth", frame)) : Image<float>();
   const Image<std::uint8_t> valid =
-      o.occluded_invalid ? read_image<std::uint8_t>(file("valid")) : Image<std::uint8_t>();
+      o.occluded_invalid ? read_image<std::uint8_t>(erp_file(sequence, "valid", frame))
+                         : Image<std::uint8_t>();
   for (int y = 0; y < flow.height; ++y)
     for (int x = 0; x < flow.width; ++x) {
       float* f = flow.pixel(x, y);
@@ -154,12 +153,10 @@ std::vector<std::string> write_panoflow_tree(const fs::path& release, const Spli
     const std::string name = frame_name(job.frame);
     const fs::path target = job.target / (name + (job.flow ? ".flo" : ".jpg"));
     if (is_complete_file(target)) return;  // resumed: whole files only
-    const fs::path source =
-        job.sequence / frame_file(output_kind("color"), std::nullopt, job.frame);
     if (job.flow)
       write_flo(target, panoflow_flow(job.sequence, job.frame, options).view());
     else
-      write_image(target, read_image<std::uint8_t>(source));
+      write_image(target, read_image<std::uint8_t>(erp_file(job.sequence, "color", job.frame)));
   });
   write_text(conventions, to_json(options).dump(1) + "\n");
   return empty;

@@ -123,7 +123,7 @@ std::string config_differences(const nlohmann::json& recorded, const nlohmann::j
 // The files and folders of a release that --force deletes (nothing else in `out` is touched).
 void remove_release_files(const fs::path& out) {
   for (const fs::path& entry :
-       {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile, out / "manifests"})
+       {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile, out / kShardDir})
     fs::remove_all(entry);
   for (const fs::path& card : dataset_card_files(out)) fs::remove(out / card);
 }

@@ -13,8 +13,11 @@ Scene box_room(float half = 10);
 // One square plane x = distance facing the origin, side `side`, class Wall; sky elsewhere.
 Scene textured_plane(double distance = 10, double side = 400);
 
-// box_room plus a 2 m box (instance 7, Vehicles) centred at `centre` at t = 0 and moving with
-// `velocity` (m/s).
+// A 2 m box (instance 7, Vehicles, every triangle of `material`) centred at `centre` at t = 0 and
+// moving with `velocity` (m/s).
+Actor sliding_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity,
+                  std::uint16_t material = 0);
+// box_room plus sliding_box(centre, velocity).
 Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity);
 
 // A solid 3-D checker of cells `size` wide in the object's frame (it moves with the object), cells

@@ -66,6 +66,8 @@ inline constexpr const char* kMetaFile = "meta.json";
 inline constexpr const char* kManifestFile = "manifest.json";
 // The config a release is being made with, written before its first frame (writer.h).
 inline constexpr const char* kConfigFile = "config.json";
+// Where the shards of a release put their manifests until flowscape_merge joins them (manifest.h).
+inline constexpr const char* kShardDir = "manifests";
 
 // A view of a sequence: the ERP panorama (no face) or one cube face.
 using View = std::optional<Face>;
@@ -74,6 +76,9 @@ inline constexpr const char* kCubeDir = "cube";  // the faces' folders are cube/
 std::filesystem::path view_dir(View view);       // "erp" or "cube/<face>"
 // <view>/<folder>/<frame><extension>, relative to the sequence folder.
 std::filesystem::path frame_file(const OutputKind& kind, View view, int frame);
+// The ERP file of output kind `kind` ("flow", "depth", ...) of a frame in a sequence folder.
+std::filesystem::path erp_file(const std::filesystem::path& sequence, std::string_view kind,
+                               int frame);
 // Every file of one frame, relative to the sequence folder.
 std::vector<std::filesystem::path> frame_files(int frame, int frames, bool cube);
 
