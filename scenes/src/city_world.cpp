@@ -203,7 +203,7 @@ class WorldBuilder {
     }
     if (layout_.is_roundabout(n)) {
       const double z = layout_.height(centre);
-      add_cylinder(mesh_, Pose(Eigen::Translation3d(centre.x(), centre.y(), z - 0.2)), 2.4, 0.5,
+      add_cylinder(mesh_, Pose(Eigen::Translation3d(centre.x(), centre.y(), z - 0.2)), 3.0, 0.5,
                    {C::Terrain, palette_.grass}, 16);
       tree(centre, 0.5);
     }

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "flowscape/core/types.h"
 
 namespace flowscape {
 namespace {
@@ -49,6 +53,40 @@ double tangent_length(double turn, double radius) {
   append_corner(curve, turn, radius);
   const PathPoint end = curve.at(curve.length());
   return end.position.x() - end.position.y() * std::cos(turn) / std::sin(turn);
+}
+
+// How a lane `offset` metres right of an arm's axis joins a ring of `radius` round the junction
+// centre, driven counter-clockwise: in the arm's frame (heading +y, towards the centre) two
+// clothoids of length `transition`, curvature 0 -> swing -> 1 / radius, the swing solved (by
+// bisection) so that the ring they end on is centred on the arm's axis.
+struct RingJoin {
+  double swing, transition;
+  V2 end;         // where the ring starts, relative to its centre
+  double before;  // distance from the start of the clothoids to the centre, along the arm
+};
+
+V2 ring_centre_of(double offset, double radius, double swing, double transition, V2* end) {
+  Path join;
+  join.start_at(V2(offset, 0), kPi / 2);
+  join.append(transition, 0, swing / transition);
+  join.append(transition, swing, (1 / radius - swing) / transition);
+  const PathPoint p = join.at(join.length());
+  *end = p.position;
+  return p.position + radius * V2(-p.direction.y(), p.direction.x());
+}
+
+RingJoin ring_join(double offset, double radius, double transition) {
+  double lo = -0.5, hi = 0;  // swing (to the right): the centre moves left as it falls to 0
+  V2 end;
+  const auto centre_x = [&](double swing) {
+    return ring_centre_of(offset, radius, swing, transition, &end).x();
+  };
+  if (centre_x(lo) < 0 || centre_x(hi) > 0)
+    throw std::logic_error("a lane " + std::to_string(offset) + " m off the axis cannot join a " +
+                           std::to_string(radius) + " m ring");
+  for (int k = 0; k < 60; ++k) (centre_x((lo + hi) / 2) > 0 ? lo : hi) = (lo + hi) / 2;
+  const V2 centre = ring_centre_of(offset, radius, lo, transition, &end);
+  return {lo, transition, end - centre, centre.y()};
 }
 
 }  // namespace
@@ -108,8 +146,11 @@ Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed
     const V2 d_in = (here - prev).normalized(), d_out = (next - here).normalized();
     const double turn = std::atan2(d_in.x() * d_out.y() - d_in.y() * d_out.x(), d_in.dot(d_out));
     if (std::abs(turn) < 1e-6 || std::abs(turn) > 3.1) continue;  // straight on, or a U-turn
-    // the curve scales with its radius; shrink it to at most half of each side
-    const double room = std::min((here - prev).norm(), (next - here).norm()) / 2;
+    // the curve scales with its radius; shrink it to fit: at most half of a side shared with
+    // another corner, all of an open polyline's first or last side
+    const auto share = [&](int end) { return !closed && (end == 0 || end == n - 1) ? 1.0 : 0.5; };
+    const double room =
+        std::min((here - prev).norm() * share(k - 1), (next - here).norm() * share(k + 1));
     const double tangent = tangent_length(turn, radius), fit = std::min(1.0, room / tangent);
     rounded.push_back(
         {here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn, fit * radius});
@@ -131,6 +172,36 @@ Path turn_path(const V2& a, const V2& da, const V2& b, const V2& db, double radi
   if (std::abs(cross) < 1e-9) return Path({a, b});
   const double u = ((b - a).x() * db.y() - (b - a).y() * db.x()) / cross;  // a + u da on b's line
   return rounded_polyline({a, a + u * da, b}, radius, false);
+}
+
+}  // namespace flowscape
+
+namespace flowscape {
+
+Path roundabout_path(const V2& a, const V2& da, const V2& b, const V2& db, const V2& centre,
+                     double radius, double transition) {
+  const auto right = [](const V2& d) { return V2(d.y(), -d.x()); };
+  const RingJoin in = ring_join((a - centre).dot(right(da)), radius, transition);
+  const RingJoin out = ring_join((b - centre).dot(right(db)), radius, transition);
+  const double straight = (centre - a).dot(da) - in.before;
+  if (straight < 0)
+    throw std::logic_error("a roundabout's ring does not fit before its stop lines");
+  // the ring's start and end in the world: the entry's end in the entry arm's frame, the exit's
+  // the mirror image (x -> -x) of an entry on the exit arm, whose frame heads along -db
+  const V2 start = in.end.x() * right(da) + in.end.y() * da;
+  const V2 end = -out.end.x() * right(-db) - out.end.y() * db;
+  double turn = std::atan2(end.y(), end.x()) - std::atan2(start.y(), start.x());
+  while (turn <= 0) turn += 2 * kPi;
+  Path path;
+  path.start_at(a, std::atan2(da.y(), da.x()));
+  path.append(straight, 0, 0);
+  path.append(transition, 0, in.swing / transition);
+  path.append(transition, in.swing, (1 / radius - in.swing) / transition);
+  path.append(radius * turn, 1 / radius, 0);
+  path.append(transition, 1 / radius, (out.swing - 1 / radius) / transition);
+  path.append(transition, out.swing, -out.swing / transition);
+  path.line_to(b);
+  return path;
 }
 
 }  // namespace flowscape

@@ -28,11 +28,14 @@ class Path {
   // A straight piece from the end to `target` (a kink if `target` is off the current heading).
   void line_to(const Eigen::Vector2d& target);
 
- private:
+  // A piece starting at arc length s0: curvature + curvature_rate * t over t in [0, length].
   struct Piece {
     Eigen::Vector2d start;
     double heading, curvature, curvature_rate, s0, length;
   };
+  const std::vector<Piece>& pieces() const { return pieces_; }
+
+ private:
   static PathPoint evaluate(const Piece& piece, double t);
   std::vector<Piece> pieces_;
   Eigen::Vector2d start_ = Eigen::Vector2d::Zero();
@@ -40,11 +43,20 @@ class Path {
 };
 
 // Straight lines joined at the corners by a circular arc of `radius` between two clothoid
-// transitions (each a quarter of the turn; the whole corner shrunk where a side is short).
+// transitions (each a quarter of the turn; the whole corner shrunk where a side is short: it may
+// take half of a side between two corners, all of a first or last side).
 Path rounded_polyline(const std::vector<Eigen::Vector2d>& corners, double radius, bool closed);
 // From `a` heading `da` to `b` heading `db` (perpendicular or parallel): straight, or two lines
 // meeting at a corner rounded with `radius`.
 Path turn_path(const Eigen::Vector2d& a, const Eigen::Vector2d& da, const Eigen::Vector2d& b,
                const Eigen::Vector2d& db, double radius);
+
+// Counter-clockwise round a ring of `radius` about `centre`, from the end of a lane at `a` heading
+// `da` to the start of one at `b` heading `db` (both arms pointing at the centre): a straight,
+// two clothoids of length `transition` onto the ring (swinging out first where the lane is inside
+// it), the ring as a circular arc, and the mirror image off it. Curvature is continuous.
+Path roundabout_path(const Eigen::Vector2d& a, const Eigen::Vector2d& da, const Eigen::Vector2d& b,
+                     const Eigen::Vector2d& db, const Eigen::Vector2d& centre, double radius,
+                     double transition);
 
 }  // namespace flowscape

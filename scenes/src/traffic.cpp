@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include "flowscape/core/random.h"
@@ -13,14 +14,67 @@ namespace {
 using V2 = Eigen::Vector2d;
 constexpr double kFrame = 1 / kFrameRate, kStep = kFrame / 2;  // two simulation steps per frame
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;  // vehicles
-constexpr double kLightCycle = 8.0, kApproach = 25.0;
+// Vehicles: gaps and headway, acceleration, the braking they plan with (behind a leader, before a
+// stop line; before a curve more gently) and the lateral acceleration they accept in curves.
+constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;
+constexpr double kBraking = 3.0, kCurveBraking = 2.0, kLateral = 3.0, kLookAhead = 250;
+constexpr double kLightCycle = 8.0, kApproach = 25.0, kSample = 0.5;
 
-// Safe-speed rule: with a step no longer than the headway, the gap never falls below `standstill`.
+// Walkers' safe-speed rule: with a step no longer than the headway, the gap never falls below
+// `standstill`.
 double next_speed(double speed, double wish, double gap, double standstill, double headway,
                   double acceleration) {
   const double safe = (gap - standstill) / headway;
   return std::max(0.0, std::min({speed + acceleration * kStep, wish, safe}));
+}
+
+// Highest speed for the next step behind something `gap` metres ahead moving at `leader_speed`.
+// Gipps' rule: driving on for a headway and then braking at kBraking stops us short of where the
+// leader would stop braking as hard (its stopping distance under-estimated by a step:
+// v^2 / 2b - v dt). Behind a leader that brakes no harder, nobody does: approaching a standing
+// obstacle the deceleration is b (1 - h / sqrt(h^2 + 2 free / b)) < b, and a follower keeps a
+// headway h. The second term keeps the standstill gap whatever the leader does.
+double safe_speed(double gap, double leader_speed) {
+  const double free = gap - kStandstill;
+  if (free <= 0) return 0;
+  const double room =
+      free + std::max(0.0, leader_speed * leader_speed / (2 * kBraking) - leader_speed * kStep);
+  const double gipps =
+      kBraking * (-kHeadway + std::sqrt(kHeadway * kHeadway + 2 * room / kBraking));
+  return std::min(gipps, free / kStep);
+}
+
+// Square of the highest speed from which a vehicle `before` metres short of point s of `path` can
+// brake at kCurveBraking to keep its lateral acceleration v^2 |k| within kLateral from s on. On a
+// piece the curvature is linear in t, and kLateral / |k(t)| + 2 b t is convex where k keeps its
+// sign: its least value is at an end or where |k| = sqrt(kLateral |k'| / 2b).
+double curve_limit_squared(const Path& path, double s, double before) {
+  double limit = kInf;
+  for (const Path::Piece& p : path.pieces()) {
+    const double t0 = std::max(0.0, s - p.s0), reach = before + p.s0 - s;
+    if (t0 >= p.length) continue;
+    if (reach + t0 > kLookAhead) break;
+    const auto bound = [&](double t) {
+      const double k = std::abs(p.curvature + p.curvature_rate * t);
+      return k == 0 ? kInf : kLateral / k + 2 * kCurveBraking * (reach + t);
+    };
+    limit = std::min({limit, bound(t0), bound(p.length)});
+    if (p.curvature_rate == 0) continue;
+    const double k = std::sqrt(kLateral * std::abs(p.curvature_rate) / (2 * kCurveBraking));
+    for (const double target : {k, -k}) {
+      const double t = (target - p.curvature) / p.curvature_rate;
+      if (t > t0 && t < p.length) limit = std::min(limit, bound(t));
+    }
+  }
+  return limit;
+}
+
+double largest_curvature(const Path& path) {
+  double largest = 0;
+  for (const Path::Piece& p : path.pieces())
+    largest = std::max(
+        {largest, std::abs(p.curvature), std::abs(p.curvature + p.curvature_rate * p.length)});
+  return largest;
 }
 
 Pose ground_pose(const Layout& layout, const PathPoint& p, double lift) {
@@ -33,12 +87,23 @@ Pose ground_pose(const Layout& layout, const PathPoint& p, double lift) {
               Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
 }
 
+// The way across a junction from one lane to another.
+struct Connector {
+  Path path;
+  std::vector<V2> samples;  // every kSample metres
+  double curvature = 0;     // the largest |curvature| on it
+};
+
 struct Vehicle {
-  double length = 0, wish = 0;
+  double length = 0, width = 0, wish = 0;
   int lane = 0, next_lane = -1;
+  const Connector* connector = nullptr;  // from lane to next_lane
+  int held = -1;                         // the junction it may cross (or is leaving), or -1
   bool in_junction = false;
-  Path connector;
   double s = 0, speed = 0, travelled = 0;
+  // How far its body reaches sideways from its connector: half its width plus the swing of its
+  // ends in the tightest curve (chord offset L^2 k / 8).
+  double sweep() const { return width / 2 + length * length * connector->curvature / 8; }
 };
 
 class Traffic {
@@ -46,18 +111,25 @@ class Traffic {
   Traffic(const Layout& layout, const std::vector<VehicleStart>& starts, std::uint64_t seed)
       : layout_(layout),
         random_(seed),
-        holder_(layout.node_height.size(), -1),
-        light_offset_(layout.node_height.size()) {
+        occupants_(layout.node_height.size()),
+        light_offset_(layout.node_height.size()),
+        tightest_(layout.node_height.size(), 0) {
     outgoing_.resize(layout.node_height.size());
     for (int l = 0; l < int(layout.lanes.size()); ++l) outgoing_[layout.lanes[l].from].push_back(l);
+    make_connectors();
     for (double& offset : light_offset_) offset = random_.uniform(0, 2 * kLightCycle);
     for (const VehicleStart& start : starts) {
       Vehicle v;
-      v.length = start.length, v.wish = std::min(start.speed, layout.lanes[start.lane].speed);
-      v.lane = start.lane, v.s = start.s, v.next_lane = choose_next(start.lane);
-      v.speed = v.wish;  // already driving; the first step brakes if the road ahead is not free
+      v.length = start.length, v.width = start.width;
+      v.wish = std::min(start.speed, layout.lanes[start.lane].speed);
+      v.lane = start.lane, v.s = start.s;
+      choose_next(v);
       vehicles_.push_back(std::move(v));
     }
+    // already driving: at the speed the road ahead allows, so the first steps do not brake hard
+    grant(0);
+    for (std::size_t i = 0; i < vehicles_.size(); ++i)
+      vehicles_[i].speed = std::min(vehicles_[i].wish, speed_limit(int(i)));
   }
 
   void step(double t) {
@@ -65,7 +137,8 @@ class Traffic {
     std::vector<double> speeds(vehicles_.size());
     for (std::size_t i = 0; i < vehicles_.size(); ++i) {
       const Vehicle& v = vehicles_[i];
-      speeds[i] = next_speed(v.speed, v.wish, gap(int(i)), kStandstill, kHeadway, kAcceleration);
+      speeds[i] =
+          std::max(0.0, std::min({v.speed + kAcceleration * kStep, v.wish, speed_limit(int(i))}));
     }
     for (std::size_t i = 0; i < vehicles_.size(); ++i) advance(int(i), speeds[i]);
     release();
@@ -73,16 +146,31 @@ class Traffic {
 
   Pose pose(int i) const {
     const Vehicle& v = vehicles_[i];
-    const Path& path = v.in_junction ? v.connector : layout_.lanes[v.lane].path;
+    const Path& path = v.in_junction ? v.connector->path : layout_.lanes[v.lane].path;
     return ground_pose(layout_, path.at(v.s), 0);
   }
   double travelled(int i) const { return vehicles_[i].travelled; }
 
  private:
   int node_of(int lane) const { return layout_.lanes[lane].to; }
+  double lane_length(int lane) const { return layout_.lanes[lane].path.length(); }
 
-  int choose_next(int lane) {
-    const Lane& in = layout_.lanes[lane];
+  // Every way across every junction (into any lane of another road), and the tightest of them.
+  void make_connectors() {
+    for (int lane = 0; lane < int(layout_.lanes.size()); ++lane)
+      for (int next : outgoing_[node_of(lane)]) {
+        if (layout_.lanes[next].to == layout_.lanes[lane].from) continue;
+        Connector c{make_connector(lane, next), {}, 0};
+        for (double s = 0; s <= c.path.length(); s += kSample)
+          c.samples.push_back(c.path.at(s).position);
+        c.curvature = largest_curvature(c.path);
+        tightest_[node_of(lane)] = std::max(tightest_[node_of(lane)], c.curvature);
+        connectors_.emplace(std::pair(lane, next), std::move(c));
+      }
+  }
+
+  void choose_next(Vehicle& v) {
+    const Lane& in = layout_.lanes[v.lane];
     const V2 in_direction = in.path.at(0).direction;
     std::vector<int> roads;  // one lane per road leaving the junction (not back where it came from)
     for (int l : outgoing_[in.to]) {
@@ -104,33 +192,23 @@ class Traffic {
       if (layout_.lanes[l].to == layout_.lanes[road].to && layout_.lanes[l].index <= in.index &&
           layout_.lanes[l].index >= layout_.lanes[road].index)
         road = l;
-    return road;
+    v.next_lane = road;
+    v.connector = &connectors_.at(std::pair(v.lane, road));
   }
 
+  // Turns at a junction: right on a 6 m corner, left on 10 m. Roundabouts are driven
+  // counter-clockwise on a ring round the island, one per lane (4.75 m and 8.25 m; each lane
+  // 3 m inside its ring; the outer ring where the lanes differ), except right turns, which take the
+  // corner.
   Path make_connector(int lane, int next) const {
     const Lane &in = layout_.lanes[lane], &out = layout_.lanes[next];
     const PathPoint a = in.path.at(in.path.length()), b = out.path.at(0);
-    if (!layout_.is_roundabout(in.to)) {
-      const double cross = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
+    const double cross = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
+    if (!layout_.is_roundabout(in.to) || cross < -0.5)
       return turn_path(a.position, a.direction, b.position, b.direction, cross < 0 ? 6 : 10);
-    }
-    // counter-clockwise round an island at the junction's centre, on an octagon's rounded corners
-    const V2 centre = layout_.node_position(in.to);
-    const double radius = 4.6 / std::cos(kPi / 8);
-    const auto angle = [&](const V2& p) {
-      return std::atan2(p.y() - centre.y(), p.x() - centre.x());
-    };
-    const double start = angle(a.position);
-    double end = angle(b.position);
-    while (end <= start + 0.3) end += 2 * kPi;
-    std::vector<V2> corners{a.position};
-    for (int k = -8; k < 24; ++k) {
-      const double c = (k + 0.5) * kPi / 4;
-      if (c > start + 0.2 && c < end - 0.2)
-        corners.push_back(centre + radius * V2(std::cos(c), std::sin(c)));
-    }
-    corners.push_back(b.position);
-    return rounded_polyline(corners, 3.0, false);
+    const int ring = std::max(in.index, out.index);
+    return roundabout_path(a.position, a.direction, b.position, b.direction,
+                           layout_.node_position(in.to), 4.75 + 3.5 * ring, 4.0);
   }
 
   bool green(int lane, double t) const {
@@ -141,6 +219,9 @@ class Traffic {
     return along_x == x_phase;
   }
 
+  // May cross the junction at the end of its lane (it holds it, or is already in it).
+  bool cleared(const Vehicle& v) const { return v.in_junction || v.held == node_of(v.lane); }
+
   // Rear position of the last vehicle on `lane` (infinity when empty).
   double last_rear(int lane) const {
     double rear = kInf;
@@ -149,77 +230,122 @@ class Traffic {
     return rear;
   }
 
-  bool ahead_on_lane(int i) const {
+  // Someone ahead on its lane who will not cross the junction the same way before it.
+  bool blocked_on_lane(int i) const {
     const Vehicle& v = vehicles_[i];
-    for (std::size_t k = 0; k < vehicles_.size(); ++k)
-      if (int(k) != i && !vehicles_[k].in_junction && vehicles_[k].lane == v.lane &&
-          vehicles_[k].s > v.s)
+    for (std::size_t k = 0; k < vehicles_.size(); ++k) {
+      const Vehicle& o = vehicles_[k];
+      if (int(k) != i && !o.in_junction && o.lane == v.lane && o.s > v.s &&
+          !(cleared(o) && o.connector == v.connector))
         return true;
+    }
     return false;
   }
 
+  // The lane it turns into has room for it behind everyone already heading there.
+  bool room_on_next(const Vehicle& v) const {
+    double room = last_rear(v.next_lane);
+    for (int k : occupants_[node_of(v.lane)])
+      if (vehicles_[k].next_lane == v.next_lane) room -= vehicles_[k].length + kStandstill;
+    return room >= v.length + kStandstill + 2;
+  }
+
+  // Closest approach of two ways across a junction (cached; the same way is never in conflict).
+  double clearance(const Connector* a, const Connector* b) {
+    const auto key = std::minmax(a, b);
+    const auto cached = clearance_.find(key);
+    if (cached != clearance_.end()) return cached->second;
+    double closest = kInf;
+    for (const V2& p : a->samples)
+      for (const V2& q : b->samples) closest = std::min(closest, (p - q).squaredNorm());
+    return clearance_[key] = std::sqrt(closest);
+  }
+
+  bool conflicts(const Vehicle& v, const Vehicle& o) {
+    return v.connector != o.connector &&
+           clearance(v.connector, o.connector) < v.sweep() + o.sweep() + 0.3;
+  }
+
+  // A vehicle near its stop line may cross when its light is green (roundabouts: always), nobody
+  // ahead on its lane crosses another way, the lane it turns into has room, and its way keeps
+  // clear of everyone's who may cross now: several vehicles share a junction when their ways do
+  // not meet (opposite straight and right turns, followers on the same way).
   void grant(double t) {
     for (std::size_t i = 0; i < vehicles_.size(); ++i) {
       Vehicle& v = vehicles_[i];
       const int node = node_of(v.lane);
-      if (v.in_junction || holder_[node] >= 0) continue;
-      const double to_stop = layout_.lanes[v.lane].path.length() - v.s - v.length / 2;
-      if (to_stop > kApproach || !green(v.lane, t) || ahead_on_lane(int(i))) continue;
-      if (last_rear(v.next_lane) < v.length + kStandstill + 2) continue;
-      holder_[node] = int(i);
-      v.connector = make_connector(v.lane, v.next_lane);
+      if (v.in_junction || v.held >= 0) continue;
+      const double to_stop = lane_length(v.lane) - v.s - v.length / 2;
+      const double approach = std::max(kApproach, v.speed * v.speed / (2 * kBraking) + v.speed);
+      if (to_stop > approach || !green(v.lane, t) || blocked_on_lane(int(i)) || !room_on_next(v))
+        continue;
+      const auto& others = occupants_[node];
+      if (std::any_of(others.begin(), others.end(),
+                      [&](int k) { return conflicts(v, vehicles_[k]); }))
+        continue;
+      v.held = node;
+      occupants_[node].push_back(int(i));
     }
   }
 
-  // Free road ahead of vehicle i's front bumper up to the next rear bumper or stop line.
-  double gap(int i) const {
+  // Highest speed the road ahead allows vehicle i: behind every vehicle ahead on its way, before
+  // its stop line unless it may cross, and slow enough for the curves ahead (its connector, the
+  // next lane, and the tightest turn of the junction after that).
+  double speed_limit(int i) const {
     const Vehicle& v = vehicles_[i];
-    const double half = v.length / 2;
-    double gap = kInf;
-    const auto consider = [&](double distance_to_centre, const Vehicle& o) {
-      gap = std::min(gap, distance_to_centre - half - o.length / 2);
+    const double half = v.length / 2, lane = lane_length(v.lane), way = v.connector->path.length();
+    double limit = kInf;
+    const auto behind = [&](double distance_to_centre, const Vehicle& o) {
+      limit = std::min(limit, safe_speed(distance_to_centre - half - o.length / 2, o.speed));
     };
-    const double lane_length = layout_.lanes[v.lane].path.length();
-    const bool holds = holder_[node_of(v.lane)] == i;
-    if (v.in_junction) {
-      for (const Vehicle& o : vehicles_)
-        if (!o.in_junction && o.lane == v.next_lane) consider(v.connector.length() - v.s + o.s, o);
-      return gap;
-    }
+    // where the connector and the next lane start, from v
+    const double to_way = v.in_junction ? -v.s : lane - v.s, to_next = to_way + way;
     for (std::size_t k = 0; k < vehicles_.size(); ++k) {
       const Vehicle& o = vehicles_[k];
       if (int(k) == i) continue;
-      if (!o.in_junction && o.lane == v.lane && o.s > v.s) consider(o.s - v.s, o);
-      if (o.in_junction && o.lane == v.lane) consider(lane_length - v.s + o.s, o);
-      if (holds && !o.in_junction && o.lane == v.next_lane)
-        consider(lane_length - v.s + v.connector.length() + o.s, o);
+      if (o.in_junction && o.lane == v.lane && (o.s > v.s || !v.in_junction))
+        behind(to_way + o.s, o);
+      if (!v.in_junction && !o.in_junction && o.lane == v.lane && o.s > v.s) behind(o.s - v.s, o);
+      if (cleared(v) && !o.in_junction && o.lane == v.next_lane) behind(to_next + o.s, o);
     }
-    if (!holds) gap = std::min(gap, lane_length - v.s - half + kStandstill - 0.5);
-    return gap;
+    if (!cleared(v)) limit = std::min(limit, safe_speed(lane - v.s - half + kStandstill - 0.5, 0));
+    double curve = std::min(
+        curve_limit_squared(v.connector->path, std::max(0.0, -to_way), std::max(0.0, to_way)),
+        curve_limit_squared(layout_.lanes[v.next_lane].path, 0, to_next));
+    if (!v.in_junction)
+      curve = std::min(curve, curve_limit_squared(layout_.lanes[v.lane].path, v.s, 0));
+    const double after = to_next + lane_length(v.next_lane);
+    if (tightest_[node_of(v.next_lane)] > 0)
+      curve = std::min(curve, kLateral / tightest_[node_of(v.next_lane)] +
+                                  2 * kCurveBraking * std::max(0.0, after));
+    return std::min(limit, std::sqrt(curve));
   }
 
   void advance(int i, double speed) {
     Vehicle& v = vehicles_[i];
     v.speed = speed, v.s += speed * kStep, v.travelled += speed * kStep;
-    if (!v.in_junction && v.s > layout_.lanes[v.lane].path.length()) {
-      v.s -= layout_.lanes[v.lane].path.length();
+    if (!v.in_junction && v.s > lane_length(v.lane)) {
+      v.s -= lane_length(v.lane);
       v.in_junction = true;
     }
-    if (v.in_junction && v.s > v.connector.length()) {
-      v.s -= v.connector.length();
+    if (v.in_junction && v.s > v.connector->path.length()) {
+      v.s -= v.connector->path.length();
       v.in_junction = false;
       v.lane = v.next_lane;
-      v.next_lane = choose_next(v.lane);
+      choose_next(v);
     }
   }
 
+  // A vehicle stops holding a junction once its rear is on the lane it turned into.
   void release() {
-    for (int& holder : holder_) {
-      if (holder < 0) continue;
-      const Vehicle& v = vehicles_[holder];
-      if (!v.in_junction && layout_.lanes[v.lane].from == int(&holder - holder_.data()) &&
-          v.s > v.length / 2 + 0.5)
-        holder = -1;
+    for (std::size_t i = 0; i < vehicles_.size(); ++i) {
+      Vehicle& v = vehicles_[i];
+      if (v.held < 0 || v.in_junction || layout_.lanes[v.lane].from != v.held ||
+          v.s <= v.length / 2 + 0.5)
+        continue;
+      auto& list = occupants_[v.held];
+      list.erase(std::find(list.begin(), list.end(), int(i)));
+      v.held = -1;
     }
   }
 
@@ -227,8 +353,11 @@ class Traffic {
   Random random_;
   std::vector<Vehicle> vehicles_;
   std::vector<std::vector<int>> outgoing_;
-  std::vector<int> holder_;  // per junction: the vehicle crossing it, or -1
+  std::map<std::pair<int, int>, Connector> connectors_;  // by (lane, next lane)
+  std::map<std::pair<const Connector*, const Connector*>, double> clearance_;
+  std::vector<std::vector<int>> occupants_;  // per junction: the vehicles that may cross it
   std::vector<double> light_offset_;
+  std::vector<double> tightest_;  // per junction: the largest curvature of a way across it
 };
 
 int sample_count(double duration) { return int(std::ceil((duration + kFrame) / kStep)) + 1; }

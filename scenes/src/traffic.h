@@ -1,8 +1,10 @@
 #pragma once
-// Internal: deterministic traffic on a Layout. Vehicles follow lanes with a safe-speed rule (never
-// closer than a standstill gap, whatever the leader does), stop at stop lines, and cross a
-// junction one at a time when its light is green (roundabouts: when free) and the lane they turn
-// into has room. Pedestrians walk loops around blocks on the sidewalks, keeping their distance.
+// Internal: deterministic traffic on a Layout. Vehicles follow lanes with Gipps' braking rule
+// (bounded braking, never closer than a standstill gap, whatever the leader does) and a curve speed
+// limit looked ahead, stop at stop lines, and cross a junction when their light is green
+// (roundabouts: always), the lane they turn into has room and their way across keeps clear of
+// everyone's who may cross it now. Pedestrians walk loops around blocks on the sidewalks, keeping
+// their distance.
 #include <vector>
 
 #include "city_layout.h"

@@ -95,3 +95,45 @@ TEST_CASE("short sides shrink the corner, closed loops close, polylines stay str
   CHECK(line.at(2.5).position.isApprox(V2(1.5, 2)));
   CHECK(line.at(8).position.isApprox(V2(3, 7)));
 }
+
+TEST_CASE("a roundabout's way runs on a true circle round the centre, joined without kinks") {
+  // arms 13 m long on a junction at (50, 20); a lane 1.75 m right of its arm's axis, a ring of
+  // 4.75 m: every exit (right, straight, left) is reached at the exit lane's start and heading,
+  // counter-clockwise round the island (turning 3 pi / 2, 0, pi / 2 in all), keeps curvature and
+  // heading continuous, and the part with curvature 1/4.75 lies on that circle
+  const V2 centre(50, 20), a = centre + V2(1.75, -13), da(0, 1);
+  const double radius = 4.75;
+  struct Exit {
+    V2 b, db;
+    double turn;  // heading change, counter-clockwise
+  };
+  const Exit exits[] = {{centre + V2(13, -1.75), V2(1, 0), 3 * kPi / 2},  // all the way round
+                        {centre + V2(1.75, 13), V2(0, 1), 0},
+                        {centre + V2(-13, 1.75), V2(-1, 0), kPi / 2}};
+  for (const Exit& exit : exits) {
+    const Path path = roundabout_path(a, da, exit.b, exit.db, centre, radius, 4.0);
+    CHECK((path.at(0).position - a).norm() < 1e-12);
+    CHECK((path.at(path.length()).position - exit.b).norm() < 1e-9);
+    const double ds = 0.01;
+    double turned = 0, largest_curvature = 0, on_ring = 0;
+    PathPoint previous = path.at(0);
+    for (double s = ds; s <= path.length(); s += ds) {
+      const PathPoint p = path.at(s);
+      const double step = std::remainder(heading(p) - heading(previous), 2 * kPi);
+      REQUIRE(std::abs(step) <=
+              std::max(std::abs(p.curvature), std::abs(previous.curvature)) * ds + 1e-6);
+      // no jump: from a swing of at most 1/3.5 to 1/4.75 over 4 m, a rate below 0.2 / m^2
+      REQUIRE(std::abs(p.curvature - previous.curvature) < 0.2 * ds);
+      if (std::abs(p.curvature - 1 / radius) < 1e-12) {
+        REQUIRE((p.position - centre).norm() == Approx(radius).epsilon(1e-9));
+        on_ring += ds;
+      }
+      largest_curvature = std::max(largest_curvature, std::abs(p.curvature));
+      turned += step;
+      previous = p;
+    }
+    CHECK(turned == Approx(exit.turn).margin(1e-5));
+    CHECK(on_ring > 1);
+    CHECK(largest_curvature < 1 / 3.5);
+  }
+}

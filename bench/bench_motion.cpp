@@ -1,0 +1,103 @@
+// bench_motion [SEEDS] [FRAMES]: how the traffic drives, measured from the poses of every vehicle
+// (and the ego) at 30 Hz on every map: the largest change of yaw rate from one frame to the next,
+// the largest longitudinal acceleration and braking, the largest lateral acceleration, the mean
+// speed, and how many vehicles share a junction. Issue 18 asks for motion a vehicle model allows.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "flowscape/core/types.h"
+#include "flowscape/scenes/city.h"
+
+using namespace flowscape;
+using V2 = Eigen::Vector2d;
+
+namespace {
+
+constexpr double kFrame = 1 / kFrameRate;
+
+struct Extremes {
+  double yaw_change = 0, acceleration = 0, braking = 0, lateral = 0, speed_sum = 0;
+  long speed_samples = 0;
+  int junction_peak = 0;
+  long junction_frames = 0, shared_frames = 0;  // frames with vehicles in a junction / with two+
+};
+
+double yaw(const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); }
+V2 ground(const Pose& p) { return p.translation().head<2>(); }
+
+void measure_track(const PoseTrack& track, int frames, Extremes& e, bool ego, double* ego_change) {
+  for (int f = 1; f + 1 < frames; ++f) {
+    const Pose a = track((f - 1) * kFrame), b = track(f * kFrame), c = track((f + 1) * kFrame);
+    const double rate0 = std::remainder(yaw(b) - yaw(a), 2 * kPi) / kFrame;
+    const double rate1 = std::remainder(yaw(c) - yaw(b), 2 * kPi) / kFrame;
+    const double v0 = (ground(b) - ground(a)).norm() / kFrame;
+    const double v1 = (ground(c) - ground(b)).norm() / kFrame;
+    const double change = std::abs(rate1 - rate0);
+    if (ego) *ego_change = std::max(*ego_change, change);
+    e.yaw_change = std::max(e.yaw_change, change);
+    e.acceleration = std::max(e.acceleration, (v1 - v0) / kFrame);
+    e.braking = std::max(e.braking, (v0 - v1) / kFrame);
+    e.lateral = std::max(e.lateral, std::abs(rate1) * v1);
+    e.speed_sum += v1, ++e.speed_samples;
+  }
+}
+
+// Vehicles in junctions: per junction vehicle, the junction vehicles within 30 m (one junction).
+void measure_junctions(const City& city, const std::vector<PoseTrack>& vehicles, int frames,
+                       Extremes& e) {
+  for (int f = 0; f < frames; ++f) {
+    std::vector<V2> inside;
+    for (const PoseTrack& track : vehicles) {
+      const V2 p = ground(track(f * kFrame));
+      if (city.area_at(p) == Area::Junction) inside.push_back(p);
+    }
+    int peak = 0;
+    for (const V2& p : inside)
+      peak = std::max(peak, int(std::count_if(inside.begin(), inside.end(),
+                                              [&](const V2& q) { return (p - q).norm() < 30; })));
+    e.junction_peak = std::max(e.junction_peak, peak);
+    e.junction_frames += !inside.empty(), e.shared_frames += peak >= 2;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int seeds = argc > 1 ? std::stoi(argv[1]) : 2, frames = argc > 2 ? std::stoi(argv[2]) : 100;
+  std::printf("%d cities per map, 120 vehicles + 80 pedestrians, %d frames at 30 Hz\n", seeds,
+              frames);
+  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s\n", "map", "ego dw", "all dw", "accel",
+              "brake", "lateral", "speed", "junction", "shared");
+  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s\n", "", "rad/s/fr", "rad/s/fr", "m/s2", "m/s2",
+              "m/s2", "m/s", "peak", "frames");
+  for (int map = 0; map < kMapCount; ++map) {
+    Extremes e;
+    double ego_change = 0;
+    for (int seed = 0; seed < seeds; ++seed) {
+      CityConfig config;
+      config.map = map, config.seed = std::uint64_t(seed), config.vehicles = 120;
+      config.pedestrians = 80, config.duration = frames * kFrame;
+      config.ego_start = (11 * map + 37 * seed) % 100;
+      const City city = make_city(config);
+      std::vector<PoseTrack> vehicles{city.ego};
+      for (std::size_t k = 0; k < city.actors.size(); ++k)
+        if (city.actors[k].kind != ActorKind::Pedestrian)
+          vehicles.push_back(city.scene.actors[k].pose);
+      for (std::size_t k = 0; k < vehicles.size(); ++k)
+        measure_track(vehicles[k], frames, e, k == 0, &ego_change);
+      measure_junctions(city, vehicles, frames, e);
+    }
+    std::printf("%-11s %9.3f %9.3f %7.2f %7.2f %7.2f %6.2f %9d %7.0f%%\n", map_name(map).c_str(),
+                ego_change, e.yaw_change, e.acceleration, e.braking, e.lateral,
+                e.speed_sum / double(e.speed_samples), e.junction_peak,
+                100.0 * double(e.shared_frames) / double(std::max(1L, e.junction_frames)));
+  }
+  std::printf(
+      "(model: acceleration <= 2.5, braking <= 3, lateral <= 3 m/s^2, yaw-rate change <= "
+      "0.118 rad/s per frame; before it, 4 x 300: 0.4-23.6 rad/s per frame, braking "
+      "8.9-22.8, lateral 28-235 m/s^2, one vehicle per junction)\n");
+  return 0;
+}
