@@ -30,7 +30,36 @@ struct Options {
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
   std::vector<std::string> weathers;  // when given: one row per weather, of the first map
   std::map<std::string, std::string> models;
+  bool plan = false;  // seen from above instead of from the ego
 };
+
+// A pinhole 40 degrees wide looking straight down on the middle of the map's roads, north up,
+// high enough to see all of them.
+FramePair plan_view(const City& city, double time) {
+  Eigen::Vector2d lo = city.start_points.front().pose.translation().head<2>(), hi = lo;
+  for (const StartPoint& p : city.start_points)
+    lo = lo.cwiseMin(p.pose.translation().head<2>()),
+    hi = hi.cwiseMax(p.pose.translation().head<2>());
+  const Eigen::Vector2d centre = (lo + hi) / 2;
+  const double half_size = 0.6 * (hi - lo).maxCoeff(), fov = 40 * kPi / 180;
+  Pose rig = Pose::Identity();
+  rig.linear() << 0, -1, 0, 0, 0, 1, -1, 0, 0;  // columns: forward = down, left = west, up = north
+  rig.translation() << centre.x(), centre.y(), half_size / std::tan(fov / 2);
+  return {time, time + 1 / kFrameRate, rig, rig};
+}
+
+// One row of the plan sheet: colour and semantics of map `map` seen from above.
+std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
+  const int frame = int(std::lround(o.time * kFrameRate));
+  const Sequence sequence = make_sequence(
+      {map, "sunny", o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
+  Renderer renderer(sequence.city.scene);
+  const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
+  const Projection camera = Projection::pinhole(o.height, o.height, 40);
+  const GroundTruth gt = renderer.ground_truth(camera, frames);
+  const Image<float> color = release_color(o.color, sequence, renderer, camera, frames, frame, gt);
+  return {linear_to_srgb8(color.view()), semantic_to_color(gt.semantic.view())};
+}
 
 // One row of the sheet: colour | flow | semantics of map `map` in a weather preset, at the frame
 // nearest the options' time.
@@ -94,6 +123,9 @@ int main(int argc, char** argv) {
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
+  app.add_flag("--plan", o.plan,
+               "each map seen from above (colour and semantics, --height pixels square) instead "
+               "of from the ego");
   finish_options(app, "city_preview");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -105,8 +137,8 @@ int main(int argc, char** argv) {
       const auto start = std::chrono::steady_clock::now();
       const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
       const std::string weather = o.weathers.empty() ? "sunny" : o.weathers[row];
-      sheet.push_back(render_row(o, map, weather));
-      label_tile(sheet.back().front(), map_name(map) + ", " + weather);
+      sheet.push_back(o.plan ? render_plan(o, map) : render_row(o, map, weather));
+      label_tile(sheet.back().front(), map_name(map) + (o.plan ? ", from above" : ", " + weather));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows, map_name(map).c_str(),

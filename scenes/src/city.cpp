@@ -109,18 +109,36 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
       throw std::invalid_argument("map " + map_name(config.map) + " has no room for " +
                                   std::to_string(config.vehicles) + " vehicles");
   }
-  for (int n = 0; n < config.pedestrians; ++n) {
+  // walkers: some in groups of two or three, one behind the other at the same pace
+  for (int n = 0; n < config.pedestrians;) {
     bool placed = false;
     for (int attempt = 0; attempt < 200 && !placed; ++attempt) {
       const int loop = random.below(int(loops.size()));
-      const double length = loops[loop].path.length(), s = random.uniform(0, length);
+      const double length = loops[loop].path.length();
+      const auto& crossings = loops[loop].crossings;
+      // a third of them a few steps before a crossing (so short sequences see people cross)
+      const double s = !crossings.empty() && random.chance(0.35)
+                           ? std::fmod(crossings[random.below(int(crossings.size()))].s_in -
+                                           random.uniform(1.5, 8) + length,
+                                       length)
+                           : random.uniform(0, length);
       if (!near_the_ego(loops[loop].path.at(s).position, ego_spot, 25, attempt, random)) continue;
-      const bool clear = std::none_of(out.walkers.begin(), out.walkers.end(), [&](auto& w) {
-        const double d = std::abs(w.s - s);
-        return w.loop == loop && std::min(d, length - d) < 1.5;
-      });
-      if (!clear) continue;
-      out.walkers.push_back({loop, s, random.uniform(1.0, 1.6)});
+      const int group =
+          std::min(config.pedestrians - n, random.chance(0.3) ? 2 + random.below(2) : 1);
+      const auto free_spot = [&](double at) {
+        for (const LoopCrossing& c : loops[loop].crossings)
+          if (at > c.s_in - 1 && at < c.s_out + 1) return false;  // not on a road
+        return std::none_of(out.walkers.begin(), out.walkers.end(), [&](auto& w) {
+          const double d = std::abs(w.s - at);
+          return w.loop == loop && std::min(d, length - d) < 1.5;
+        });
+      };
+      std::vector<double> spots;
+      for (int k = 0; k < group; ++k) spots.push_back(std::fmod(s - 1.6 * k + length, length));
+      if (!std::all_of(spots.begin(), spots.end(), free_spot)) continue;
+      const double pace = random.uniform(1.0, 1.6);
+      for (double spot : spots) out.walkers.push_back({loop, spot, pace});
+      n += group;
       placed = true;
     }
     if (!placed)
@@ -128,6 +146,44 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
                                   std::to_string(config.pedestrians) + " pedestrians");
   }
   return out;
+}
+
+// Cars parked in the shoulder along the kerb, right of the outer lane of two-way streets (not
+// within 12 m of a junction, not on three-lane roads), 40 % of the slots taken: baked into the
+// static world, their footprints among the solids moving actors keep clear of.
+void park_cars(const Layout& layout, const std::map<ActorKind, Mesh>& models, std::uint64_t seed,
+               City& city) {
+  const KindSize car = kind_size(ActorKind::Car);
+  if (layout.style.shoulder < car.width + 0.1) return;
+  Random random(mix_bits(seed ^ 0x7061726bull));  // "park": its own stream
+  std::map<std::pair<int, int>, int> outer;       // per road direction (from, to): outer lane
+  for (const Lane& lane : layout.lanes) {
+    int& index = outer[{lane.from, lane.to}];
+    index = std::max(index, lane.index);
+  }
+  const auto model = models.find(ActorKind::Car);
+  for (const Lane& lane : layout.lanes) {
+    if (lane.index != outer[{lane.from, lane.to}] || lane.index >= 2) continue;
+    const double kerb = kLaneWidth / 2 + layout.style.shoulder / 2;  // from the lane's centre
+    for (double s = 12 + car.length / 2; s < lane.path.length() - 12 - car.length / 2;
+         s += car.length + random.uniform(1, 5)) {
+      if (!random.chance(0.4)) continue;
+      const PathPoint p = lane.path.at(s);
+      const Eigen::Vector2d right(p.direction.y(), -p.direction.x()),
+          at = p.position + kerb * right;
+      const double pitch =
+          std::atan2(layout.height(at + p.direction) - layout.height(at - p.direction), 2.0);
+      const Pose pose(Eigen::Translation3d(at.x(), at.y(), layout.height(at)) *
+                      Eigen::AngleAxisd(std::atan2(p.direction.y(), p.direction.x()),
+                                        Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
+      add_parked_vehicle(ActorKind::Car, pose, model == models.end() ? nullptr : &model->second,
+                         random, city.scene);
+      const Eigen::Vector2d along = p.direction * car.length / 2, side = right * car.width / 2;
+      city.solids.push_back(
+          {at - along - side, at + along - side, at + along + side, at - along + side});
+    }
+  }
 }
 
 std::map<ActorKind, Mesh> user_models(const CityConfig& config, Scene& scene) {
@@ -205,6 +261,8 @@ City make_city(const CityConfig& config) {
   City city;
   city.config = config;
   city.solids = build_world(*layout, config.seed, city.scene);
+  const std::map<ActorKind, Mesh> models = user_models(config, city.scene);
+  park_cars(*layout, models, config.seed, city);
   city.start_points = start_points(*layout);
   city.area_at = [layout](const Eigen::Vector2d& p) { return layout->area(p); };
   city.ground_height = [layout](const Eigen::Vector2d& p) { return layout->height(p); };
@@ -212,15 +270,13 @@ City make_city(const CityConfig& config) {
   const std::vector<SidewalkLoop> loops = sidewalk_loops(*layout);
   const Spawned spawned =
       spawn(*layout, loops, city.start_points.at(config.ego_start), config, random);
-  const std::vector<Track> vehicle_tracks =
-      simulate_vehicles(*layout, spawned.vehicles, config.duration, config.seed);
-  const std::vector<Track> walker_tracks =
-      simulate_walkers(*layout, loops, spawned.walkers, config.duration);
+  const TrafficTracks tracks = simulate_traffic(*layout, loops, spawned.vehicles, spawned.walkers,
+                                                config.duration, config.seed);
+  const std::vector<Track>&vehicle_tracks = tracks.vehicles, &walker_tracks = tracks.walkers;
   const auto ego = std::make_shared<const Track>(vehicle_tracks[0]);
   city.ego = [ego](double t) { return ego->pose(t); };
   city.ego_distance = [ego](double t) { return ego->distance_at(t); };
   city.mount = random_mount(config.seed);
-  const std::map<ActorKind, Mesh> models = user_models(config, city.scene);
   const auto add = [&](ActorKind kind, const Track& track, int lane, double s, double speed) {
     const auto instance = std::uint16_t(city.scene.actors.size() + 1);
     const auto model = models.find(kind);

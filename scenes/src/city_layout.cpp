@@ -12,21 +12,26 @@ namespace {
 using V2 = Eigen::Vector2d;
 using B = Style::Buildings;
 
+// clang-format off
 const Style kStyles[kMapCount] = {
     // name, nx, ny, spacing, lanes, shoulder, sidewalk, buildings, heights, fill, trees, parks,
-    // hills, speed
+    // hills, speed, roundabouts, highway, water, rails, tees
     {"downtown", 5, 5, 65, 85, 2, 2.0, 4.5, B::Towers, 18, 60, 0.95, 2, 0.05, 0, 11},
-    {"suburb", 5, 4, 85, 110, 1, 2.5, 3.0, B::Houses, 5, 8, 0.55, 6, 0.1, 0, 10},
-    {"highway", 6, 3, 120, 170, 1, 2.5, 3.0, B::Warehouses, 8, 14, 0.35, 3, 0.2, 0, 12, false,
-     true},
-    {"rural", 4, 3, 150, 220, 1, 1.5, 2.0, B::Farms, 5, 8, 0.12, 4, 0.3, 3, 14},
+    {"suburb", 5, 4, 85, 110, 1, 2.5, 3.0, B::Houses, 5, 8, 0.55, 6, 0.1, 0, 10,
+     false, false, false, false, 0.7},
+    {"highway", 6, 3, 120, 170, 1, 2.5, 3.0, B::Warehouses, 8, 14, 0.35, 3, 0.2, 0, 12,
+     false, true},
+    {"rural", 4, 3, 150, 220, 1, 1.5, 2.0, B::Farms, 5, 8, 0.12, 4, 0.3, 3, 14,
+     false, false, false, false, 1.0},
     {"roundabout", 5, 5, 80, 100, 2, 2.0, 3.5, B::MidRise, 10, 22, 0.75, 3, 0.1, 0, 10, true},
-    {"waterfront", 6, 4, 70, 90, 2, 2.0, 4.0, B::MidRise, 12, 30, 0.8, 4, 0.1, 0, 11, false, false,
-     true},
-    {"industrial", 4,   4, 110,  150, 2,  2.5,   2.5,   B::Warehouses, 8,
-     16,           0.6, 1, 0.05, 0,   11, false, false, false,         true},
-    {"hilltown", 5, 5, 70, 90, 1, 2.5, 3.0, B::MidRise, 8, 16, 0.7, 4, 0.1, 10, 9},
+    {"waterfront", 6, 4, 70, 90, 2, 2.0, 4.0, B::MidRise, 12, 30, 0.8, 4, 0.1, 0, 11,
+     false, false, true},
+    {"industrial", 4, 4, 110, 150, 2, 2.5, 2.5, B::Warehouses, 8, 16, 0.6, 1, 0.05, 0, 11,
+     false, false, false, true, 0.7},
+    {"hilltown", 5, 5, 70, 90, 1, 2.5, 3.0, B::MidRise, 8, 16, 0.7, 4, 0.1, 10, 9,
+     false, false, false, false, 0.6},
 };
+// clang-format on
 constexpr double kHighwayHeight = 5, kHighwaySpeed = 20;
 
 std::vector<double> road_lines(int count, double lo, double hi, Random& random) {
@@ -59,6 +64,47 @@ void add_lanes(Layout& layout, int from, int to, int lanes, double median, doubl
   }
 }
 
+int arms(const Layout& layout, int n) {
+  int count = 0;
+  for (int arm = 0; arm < 4; ++arm) count += layout.has_arm(n, arm);
+  return count;
+}
+
+// Leaves out inner road segments at random (each with the style's share `tees`): only between two
+// blocks not yet joined, so every block stays a rectangle of at most two cells, and only where
+// both ends keep three roads (T-junctions, no dead ends).
+void leave_out_segments(Layout& layout, Random& random) {
+  const int nx = layout.nx(), ny = layout.ny();
+  layout.x_open.assign(std::size_t((nx - 1) * ny), 1);
+  layout.y_open.assign(std::size_t(nx * (ny - 1)), 1);
+  if (layout.style.tees == 0) return;
+  struct Segment {
+    bool along_x;
+    int i, j;
+  };
+  std::vector<Segment> inner;
+  for (int j = 1; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) inner.push_back({true, i, j});
+  for (int i = 1; i + 1 < nx; ++i)
+    for (int j = 0; j + 1 < ny; ++j) inner.push_back({false, i, j});
+  for (int k = int(inner.size()) - 1; k > 0; --k) std::swap(inner[k], inner[random.below(k + 1)]);
+  std::vector<char> joined(std::size_t((nx - 1) * (ny - 1)), 0);  // per cell between roads
+  for (const Segment& g : inner) {
+    if (!random.chance(layout.style.tees)) continue;
+    const int a = layout.node(g.i, g.j), b = g.along_x ? a + 1 : a + nx;
+    const int c1 = g.along_x ? (g.j - 1) * (nx - 1) + g.i : g.j * (nx - 1) + g.i - 1;
+    const int c2 = g.along_x ? g.j * (nx - 1) + g.i : g.j * (nx - 1) + g.i;
+    if (joined[c1] || joined[c2]) continue;
+    char& open = g.along_x ? layout.x_open[g.j * (nx - 1) + g.i] : layout.y_open[g.j * nx + g.i];
+    open = 0;
+    if (arms(layout, a) < 3 || arms(layout, b) < 3) {
+      open = 1;
+      continue;
+    }
+    joined[c1] = joined[c2] = 1;
+  }
+}
+
 }  // namespace
 
 const Style& style_of(int map) {
@@ -79,6 +125,20 @@ Eigen::Vector2d Layout::junction_reach(int n) const {
   return {half_width_y(n % nx()) + kCrosswalk, half_width_x(n / nx()) + kCrosswalk};
 }
 
+bool Layout::has_arm(int n, int arm) const {
+  const int i = n % nx(), j = n / nx();
+  switch (arm) {
+    case 0:
+      return i > 0 && x_segment(i - 1, j);
+    case 1:
+      return i + 1 < nx() && x_segment(i, j);
+    case 2:
+      return j > 0 && y_segment(i, j - 1);
+    default:
+      return j + 1 < ny() && y_segment(i, j);
+  }
+}
+
 bool Layout::is_roundabout(int n) const {
   const int i = n % nx(), j = n / nx();
   return style.roundabouts && i > 0 && j > 0 && i < nx() - 1 && j < ny() - 1;
@@ -96,21 +156,25 @@ Area Layout::area(const V2& p) const {
   const V2 low = lo(), high = hi();
   if (p.x() < low.x() || p.y() < low.y() || p.x() > high.x() || p.y() > high.y())
     return Area::Outside;
-  const bool within_x =
-      p.x() >= xs.front() - half_width_y(0) && p.x() <= xs.back() + half_width_y(nx() - 1);
-  const bool within_y =
-      p.y() >= ys.front() - half_width_x(0) && p.y() <= ys.back() + half_width_x(ny() - 1);
   double to_road = 1e9;  // distance from p to the nearest road edge
   bool on_x_road = false, on_y_road = false;
-  for (int j = 0; j < ny() && within_x; ++j) {
-    const double d = std::abs(p.y() - ys[j]) - half_width_x(j);
-    on_x_road |= d <= 0, to_road = std::min(to_road, d);
-  }
-  for (int i = 0; i < nx() && within_y; ++i) {
-    const double d = std::abs(p.x() - xs[i]) - half_width_y(i);
-    on_y_road |= d <= 0, to_road = std::min(to_road, d);
-  }
+  for (int j = 0; j < ny(); ++j)
+    for (int i = 0; i + 1 < nx(); ++i)
+      if (x_segment(i, j) && p.x() >= xs[i] - half_width_y(i) &&
+          p.x() <= xs[i + 1] + half_width_y(i + 1)) {
+        const double d = std::abs(p.y() - ys[j]) - half_width_x(j);
+        on_x_road |= d <= 0, to_road = std::min(to_road, d);
+      }
+  for (int i = 0; i < nx(); ++i)
+    for (int j = 0; j + 1 < ny(); ++j)
+      if (y_segment(i, j) && p.y() >= ys[j] - half_width_x(j) &&
+          p.y() <= ys[j + 1] + half_width_x(j + 1)) {
+        const double d = std::abs(p.x() - xs[i]) - half_width_y(i);
+        on_y_road |= d <= 0, to_road = std::min(to_road, d);
+      }
   if (on_x_road && on_y_road) return Area::Junction;
+  for (const Crosswalk& c : crosswalks)
+    if (c.contains(p)) return Area::Crossing;
   if (on_x_road || on_y_road) return Area::Road;
   if (to_road <= style.sidewalk) return Area::SideWalk;
   if (style.water && p.y() < ys.front() - half_width_x(0) - style.sidewalk - 8) return Area::Water;
@@ -137,8 +201,10 @@ Layout make_layout(int map, std::uint64_t seed) {
       if (j == highway_row) h = kHighwayHeight;
       layout.node_height.push_back(h);
     }
+  leave_out_segments(layout, random);
   for (int j = 0; j < style.ny; ++j)
     for (int i = 0; i + 1 < style.nx; ++i) {
+      if (!layout.x_segment(i, j)) continue;
       const int a = layout.node(i, j), b = layout.node(i + 1, j), lanes = layout.lanes_along_x[j];
       const double speed = j == highway_row ? kHighwaySpeed : style.speed;
       add_lanes(layout, a, b, lanes, layout.median(lanes), speed);
@@ -146,22 +212,43 @@ Layout make_layout(int map, std::uint64_t seed) {
     }
   for (int i = 0; i < style.nx; ++i)
     for (int j = 0; j + 1 < style.ny; ++j) {
+      if (!layout.y_segment(i, j)) continue;
       const int a = layout.node(i, j), b = layout.node(i, j + 1), lanes = layout.lanes_along_y[i];
       add_lanes(layout, a, b, lanes, layout.median(lanes), style.speed);
       add_lanes(layout, b, a, lanes, layout.median(lanes), style.speed);
     }
+  for (int n = 0; n < int(layout.node_height.size()); ++n)
+    for (int arm = 0; arm < 4; ++arm) {
+      if (!layout.has_arm(n, arm)) continue;
+      const V2 centre = layout.node_position(n), reach = layout.junction_reach(n);
+      const double hx = layout.half_width_y(n % layout.nx()),
+                   hy = layout.half_width_x(n / layout.nx());
+      const double side = arm % 2 ? 1 : -1;
+      const bool across_x = arm < 2;  // arms 0 and 1 run along x
+      const V2 a = across_x ? centre + V2(side * hx, -hy) : centre + V2(-hx, side * hy);
+      const V2 b = across_x ? centre + V2(side * reach.x(), hy) : centre + V2(hx, side * reach.y());
+      layout.crosswalks.push_back({n, across_x, a.cwiseMin(b), a.cwiseMax(b)});
+    }
   const V2 low = layout.lo(), high = layout.hi();
+  const auto x_edge = [&](int i, double outside) {  // the road edge left of road line i
+    return i < 0 || i >= style.nx ? outside : layout.xs[i] - layout.half_width_y(i);
+  };
+  const auto y_edge = [&](int j, double outside) {
+    return j < 0 || j >= style.ny ? outside : layout.ys[j] - layout.half_width_x(j);
+  };
   for (int j = -1; j < style.ny; ++j)
     for (int i = -1; i < style.nx; ++i) {
-      const double x0 = i < 0 ? low.x() : layout.xs[i] + layout.half_width_y(i);
-      const double x1 =
-          i + 1 >= style.nx ? high.x() : layout.xs[i + 1] - layout.half_width_y(i + 1);
-      const double y0 = j < 0 ? low.y() : layout.ys[j] + layout.half_width_x(j);
-      const double y1 =
-          j + 1 >= style.ny ? high.y() : layout.ys[j + 1] - layout.half_width_x(j + 1);
       const bool inner = i >= 0 && j >= 0 && i + 1 < style.nx && j + 1 < style.ny;
-      layout.blocks.push_back(
-          {V2(x0, y0), V2(x1, y1), inner, {i >= 0, i + 1 < style.nx, j >= 0, j + 1 < style.ny}});
+      // a block joined to the one before it across a left-out segment was made with that one
+      if (inner && (!layout.y_segment(i, j) || !layout.x_segment(i, j))) continue;
+      const int i1 = inner && !layout.y_segment(i + 1, j) ? i + 2 : i + 1;
+      const int j1 = inner && !layout.x_segment(i, j + 1) ? j + 2 : j + 1;
+      const double x0 = i < 0 ? low.x() : layout.xs[i] + layout.half_width_y(i);
+      const double y0 = j < 0 ? low.y() : layout.ys[j] + layout.half_width_x(j);
+      layout.blocks.push_back({V2(x0, y0),
+                               V2(x_edge(i1, high.x()), y_edge(j1, high.y())),
+                               inner,
+                               {i >= 0, i1 < style.nx, j >= 0, j1 < style.ny}});
     }
   return layout;
 }

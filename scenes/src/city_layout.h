@@ -1,6 +1,7 @@
 #pragma once
-// Internal: the plan of a city map, a grid of roads with lanes, junctions, sidewalks and blocks,
-// and the height of the ground under it.
+// Internal: the plan of a city map, a grid of roads (some inner segments left out, making
+// T-junctions and longer blocks) with lanes, junctions, sidewalks and blocks, and the height of
+// the ground under it.
 #include <array>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ struct Style {
   double hills;                   // amplitude of the terrain, metres
   double speed;                   // vehicles' wish speed, m/s
   bool roundabouts = false, highway = false, water = false, rails = false;
+  double tees = 0;  // share of the inner road segments left out, making T-junctions
 };
 const Style& style_of(int map);
 
@@ -42,6 +44,18 @@ struct Block {
   std::array<bool, 4> road_beside;  // a road along its side at lo.x, hi.x, lo.y, hi.y
 };
 
+// A zebra crossing on an arm of a junction: the band of road between the junction's box and its
+// stop lines, across the arm.
+struct Crosswalk {
+  int node;
+  bool across_x_road;  // on an arm along x (pedestrians walk along y)
+  Eigen::Vector2d lo, hi;
+  bool contains(const Eigen::Vector2d& p, double margin = 0) const {
+    return p.x() >= lo.x() - margin && p.y() >= lo.y() - margin && p.x() <= hi.x() + margin &&
+           p.y() <= hi.y() + margin;
+  }
+};
+
 struct Layout {
   Style style;
   std::vector<double> xs, ys;  // road centre lines
@@ -50,10 +64,17 @@ struct Layout {
   double margin = 45;
   std::vector<Lane> lanes;
   std::vector<Block> blocks;
+  std::vector<Crosswalk> crosswalks;
+  // Whether the road runs from node (i, j) to (i + 1, j), and from (i, j) to (i, j + 1).
+  std::vector<char> x_open, y_open;
 
   int nx() const { return int(xs.size()); }
   int ny() const { return int(ys.size()); }
   int node(int i, int j) const { return j * nx() + i; }
+  bool x_segment(int i, int j) const { return x_open[j * (nx() - 1) + i]; }
+  bool y_segment(int i, int j) const { return y_open[j * nx() + i]; }
+  // The roads leaving node n towards -x, +x, -y, +y (arm 0..3).
+  bool has_arm(int n, int arm) const;
   Eigen::Vector2d node_position(int n) const { return {xs[n % nx()], ys[n / nx()]}; }
   double median(int lanes) const { return lanes >= 3 ? 2.0 : 0.0; }
   double half_width_x(int j) const;  // of the road along x at ys[j]

@@ -176,4 +176,11 @@ Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const T
   return actor;
 }
 
+void add_parked_vehicle(ActorKind kind, const Pose& pose, const Mesh* user_model, Random& random,
+                        Scene& scene) {
+  const auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
+  const Actor actor = make_actor(kind, 0, still, user_model, random, scene);
+  for (const Part& part : actor.parts) append_mesh(scene.world, part.mesh, pose * part.pose(0));
+}
+
 }  // namespace flowscape

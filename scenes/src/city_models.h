@@ -17,5 +17,8 @@ KindSize kind_size(ActorKind kind);
 // An actor following `track`; `user_model` (if not null) replaces the built-in body.
 Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const Track> track,
                  const Mesh* user_model, Random& random, Scene& scene);
+// A vehicle standing at `pose` for good, baked into the static world (class Vehicles, instance 0).
+void add_parked_vehicle(ActorKind kind, const Pose& pose, const Mesh* user_model, Random& random,
+                        Scene& scene);
 
 }  // namespace flowscape

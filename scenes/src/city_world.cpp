@@ -135,15 +135,20 @@ class WorldBuilder {
   // Roads map u along the road and v across it from the centre line (asphalt's tyre tracks).
   void roads() {
     const Paint road{C::Road, palette_.asphalt};
-    for (int j = 0; j < layout_.ny(); ++j)
-      patch(
-          V2(layout_.xs.front() - layout_.half_width_y(0), layout_.ys[j] - layout_.half_width_x(j)),
-          V2(layout_.xs.back() + layout_.half_width_y(layout_.nx() - 1),
-             layout_.ys[j] + layout_.half_width_x(j)),
-          0, road, 4, {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
+    for (int j = 0; j < layout_.ny(); ++j)  // runs of segments along x, junctions included
+      for (int i = 0, end = 0; i + 1 < layout_.nx(); i = std::max(i + 1, end)) {
+        for (end = i; end + 1 < layout_.nx() && layout_.x_segment(end, j);) ++end;
+        if (end == i) continue;
+        patch(V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] - layout_.half_width_x(j)),
+              V2(layout_.xs[end] + layout_.half_width_y(end),
+                 layout_.ys[j] + layout_.half_width_x(j)),
+              0, road, 4, {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
+      }
     for (int i = 0; i < layout_.nx(); ++i)
       for (int j = 0; j + 1 < layout_.ny(); ++j)
-        patch(V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] + layout_.half_width_x(j)),
+        if (layout_.y_segment(i, j))
+          patch(
+              V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] + layout_.half_width_x(j)),
               V2(layout_.xs[i] + layout_.half_width_y(i),
                  layout_.ys[j + 1] - layout_.half_width_x(j + 1)),
               0, road, 4, {V3(layout_.xs[i], 0, 0), V3::UnitY(), -V3::UnitX()});
@@ -192,12 +197,12 @@ class WorldBuilder {
     const double hx = layout_.half_width_y(n % layout_.nx()),
                  hy = layout_.half_width_x(n / layout_.nx());
     const Paint zebra{C::RoadLine, palette_.white};
-    // crossings on the four arms, stripes along the road
+    // crossings on its arms, stripes along the road
     for (int side : {-1, 1}) {
-      for (double y = -hy + 0.5; y < hy - 0.4; y += 1.2)  // arms along x
+      for (double y = -hy + 0.5; y < hy - 0.4 && layout_.has_arm(n, side > 0); y += 1.2)
         strip(centre + V2(side * (hx + 0.5), y), centre + V2(side * (reach.x() - 0.5), y), 0.6,
               0.02, zebra);
-      for (double x = -hx + 0.5; x < hx - 0.4; x += 1.2)  // arms along y
+      for (double x = -hx + 0.5; x < hx - 0.4 && layout_.has_arm(n, 2 + (side > 0)); x += 1.2)
         strip(centre + V2(x, side * (hy + 0.5)), centre + V2(x, side * (reach.y() - 0.5)), 0.6,
               0.02, zebra);
     }

@@ -19,6 +19,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;
 constexpr double kBraking = 3.0, kCurveBraking = 2.0, kLateral = 3.0, kLookAhead = 250;
 constexpr double kLightCycle = 8.0, kApproach = 25.0, kSample = 0.5;
+// Walkers: body length along the way, gap, headway, acceleration; how close to the kerb they ask
+// to cross, and how far a vehicle's way must keep from a crosswalk with walkers on it.
+constexpr double kBody = 0.6, kWalkGap = 0.6, kWalkHeadway = 0.8, kWalkAcceleration = 1.0;
+constexpr double kAskToCross = 3.0, kCrosswalkMargin = 3.0;
 
 // Walkers' safe-speed rule: with a step no longer than the headway, the gap never falls below
 // `standstill`.
@@ -90,8 +94,15 @@ Pose ground_pose(const Layout& layout, const PathPoint& p, double lift) {
 // The way across a junction from one lane to another.
 struct Connector {
   Path path;
-  std::vector<V2> samples;  // every kSample metres
-  double curvature = 0;     // the largest |curvature| on it
+  std::vector<V2> samples;      // every kSample metres
+  double curvature = 0;         // the largest |curvature| on it
+  std::vector<int> crosswalks;  // the crosswalks of its junction it passes over
+};
+
+struct Walker {
+  int loop = 0;
+  double s = 0, speed = 0, wish = 0, travelled = 0;
+  int crossing = -1;  // the loop crossing it may take (or is on), or -1
 };
 
 struct Vehicle {
@@ -108,12 +119,17 @@ struct Vehicle {
 
 class Traffic {
  public:
-  Traffic(const Layout& layout, const std::vector<VehicleStart>& starts, std::uint64_t seed)
+  Traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
+          const std::vector<VehicleStart>& starts, const std::vector<WalkerStart>& walkers,
+          std::uint64_t seed)
       : layout_(layout),
+        loops_(loops),
         random_(seed),
         occupants_(layout.node_height.size()),
         light_offset_(layout.node_height.size()),
-        tightest_(layout.node_height.size(), 0) {
+        tightest_(layout.node_height.size(), 0),
+        walkers_on_(layout.crosswalks.size(), 0) {
+    for (const WalkerStart& w : walkers) walkers_.push_back({w.loop, w.s, w.speed, w.speed, 0, -1});
     outgoing_.resize(layout.node_height.size());
     for (int l = 0; l < int(layout.lanes.size()); ++l) outgoing_[layout.lanes[l].from].push_back(l);
     make_connectors();
@@ -134,13 +150,16 @@ class Traffic {
 
   void step(double t) {
     grant(t);
-    std::vector<double> speeds(vehicles_.size());
+    let_walkers_cross(t);
+    std::vector<double> speeds(vehicles_.size()), paces(walkers_.size());
     for (std::size_t i = 0; i < vehicles_.size(); ++i) {
       const Vehicle& v = vehicles_[i];
       speeds[i] =
           std::max(0.0, std::min({v.speed + kAcceleration * kStep, v.wish, speed_limit(int(i))}));
     }
+    for (std::size_t i = 0; i < walkers_.size(); ++i) paces[i] = walker_speed(int(i));
     for (std::size_t i = 0; i < vehicles_.size(); ++i) advance(int(i), speeds[i]);
+    for (std::size_t i = 0; i < walkers_.size(); ++i) walk(int(i), paces[i]);
     release();
   }
 
@@ -150,6 +169,12 @@ class Traffic {
     return ground_pose(layout_, path.at(v.s), 0);
   }
   double travelled(int i) const { return vehicles_[i].travelled; }
+  Pose walker_pose(int i) const {
+    const Walker& w = walkers_[i];
+    const SidewalkLoop& loop = loops_[w.loop];
+    return ground_pose(layout_, loop.path.at(w.s), loop.lift(w.s));
+  }
+  double walked(int i) const { return walkers_[i].travelled; }
 
  private:
   int node_of(int lane) const { return layout_.lanes[lane].to; }
@@ -160,10 +185,17 @@ class Traffic {
     for (int lane = 0; lane < int(layout_.lanes.size()); ++lane)
       for (int next : outgoing_[node_of(lane)]) {
         if (layout_.lanes[next].to == layout_.lanes[lane].from) continue;
-        Connector c{make_connector(lane, next), {}, 0};
+        Connector c{make_connector(lane, next), {}, 0, {}};
         for (double s = 0; s <= c.path.length(); s += kSample)
           c.samples.push_back(c.path.at(s).position);
         c.curvature = largest_curvature(c.path);
+        for (int k = 0; k < int(layout_.crosswalks.size()); ++k) {
+          const Crosswalk& crosswalk = layout_.crosswalks[k];
+          if (crosswalk.node == node_of(lane) &&
+              std::any_of(c.samples.begin(), c.samples.end(),
+                          [&](const V2& p) { return crosswalk.contains(p, kCrosswalkMargin); }))
+            c.crosswalks.push_back(k);
+        }
         tightest_[node_of(lane)] = std::max(tightest_[node_of(lane)], c.curvature);
         connectors_.emplace(std::pair(lane, next), std::move(c));
       }
@@ -211,12 +243,82 @@ class Traffic {
                            layout_.node_position(in.to), 4.75 + 3.5 * ring, 4.0);
   }
 
+  // Lights alternate between the roads along x and those along y (roundabouts: no lights).
+  bool x_phase(int node, double t) const {
+    return int(std::floor((t + light_offset_[node]) / kLightCycle)) % 2 == 0;
+  }
+
   bool green(int lane, double t) const {
     const int node = node_of(lane);
     if (layout_.is_roundabout(node)) return true;
     const bool along_x = std::abs(layout_.lanes[lane].path.at(0).direction.x()) > 0.5;
-    const bool x_phase = int(std::floor((t + light_offset_[node]) / kLightCycle)) % 2 == 0;
-    return along_x == x_phase;
+    return along_x == x_phase(node, t);
+  }
+
+  // Walkers may cross a road while the road they walk along has green.
+  bool walk_signal(const Crosswalk& crosswalk, double t) const {
+    return layout_.is_roundabout(crosswalk.node) ||
+           crosswalk.across_x_road != x_phase(crosswalk.node, t);
+  }
+
+  // The next crossing of walker w's loop ahead of it, and how far ahead its kerb is.
+  std::pair<int, double> next_crossing(const Walker& w) const {
+    const SidewalkLoop& loop = loops_[w.loop];
+    const double length = loop.path.length();
+    int next = -1;
+    double ahead = kInf;
+    for (int k = 0; k < int(loop.crossings.size()); ++k) {
+      const double d = std::fmod(loop.crossings[k].s_in - w.s + length, length);
+      if (d < ahead) next = k, ahead = d;
+    }
+    return {next, ahead};
+  }
+
+  // A walker near a kerb may cross when the signal lets it and no vehicle that may cross the
+  // junction passes over the crosswalk; vehicles then wait for it (grant).
+  void let_walkers_cross(double t) {
+    for (Walker& w : walkers_) {
+      if (w.crossing >= 0) continue;
+      const auto [next, ahead] = next_crossing(w);
+      if (next < 0 || ahead - kBody / 2 > kAskToCross) continue;
+      const int index = loops_[w.loop].crossings[next].crosswalk;
+      const Crosswalk& crosswalk = layout_.crosswalks[index];
+      const auto& others = occupants_[crosswalk.node];
+      const bool passed = std::any_of(others.begin(), others.end(), [&](int k) {
+        const auto& list = vehicles_[k].connector->crosswalks;
+        return std::find(list.begin(), list.end(), index) != list.end();
+      });
+      if (!walk_signal(crosswalk, t) || passed) continue;
+      w.crossing = next;
+      ++walkers_on_[index];
+    }
+  }
+
+  // Behind the walkers ahead on its loop, and before the kerb unless it may cross.
+  double walker_speed(int i) const {
+    const Walker& w = walkers_[i];
+    const double length = loops_[w.loop].path.length();
+    double gap = kInf;
+    for (std::size_t k = 0; k < walkers_.size(); ++k)
+      if (int(k) != i && walkers_[k].loop == w.loop)
+        gap = std::min(gap, std::fmod(walkers_[k].s - w.s + length, length) - kBody);
+    const auto [next, ahead] = next_crossing(w);
+    if (next >= 0 && w.crossing != next) gap = std::min(gap, ahead - kBody / 2 + kWalkGap - 0.1);
+    return next_speed(w.speed, w.wish, gap, kWalkGap, kWalkHeadway, kWalkAcceleration);
+  }
+
+  // Moves walker i on; it leaves a crosswalk once its body is off the road.
+  void walk(int i, double speed) {
+    Walker& w = walkers_[i];
+    const SidewalkLoop& loop = loops_[w.loop];
+    w.speed = speed, w.travelled += speed * kStep;
+    w.s = std::fmod(w.s + speed * kStep, loop.path.length());
+    if (w.crossing < 0) return;
+    const LoopCrossing& c = loop.crossings[w.crossing];
+    if (w.s > c.s_out + kBody / 2 + 0.3 && w.s < c.s_out + 10) {
+      --walkers_on_[c.crosswalk];
+      w.crossing = -1;
+    }
   }
 
   // May cross the junction at the end of its lane (it holds it, or is already in it).
@@ -281,7 +383,9 @@ class Traffic {
         continue;
       const auto& others = occupants_[node];
       if (std::any_of(others.begin(), others.end(),
-                      [&](int k) { return conflicts(v, vehicles_[k]); }))
+                      [&](int k) { return conflicts(v, vehicles_[k]); }) ||
+          std::any_of(v.connector->crosswalks.begin(), v.connector->crosswalks.end(),
+                      [&](int c) { return walkers_on_[c] > 0; }))
         continue;
       v.held = node;
       occupants_[node].push_back(int(i));
@@ -350,14 +454,17 @@ class Traffic {
   }
 
   const Layout& layout_;
+  const std::vector<SidewalkLoop>& loops_;
   Random random_;
   std::vector<Vehicle> vehicles_;
+  std::vector<Walker> walkers_;
   std::vector<std::vector<int>> outgoing_;
   std::map<std::pair<int, int>, Connector> connectors_;  // by (lane, next lane)
   std::map<std::pair<const Connector*, const Connector*>, double> clearance_;
   std::vector<std::vector<int>> occupants_;  // per junction: the vehicles that may cross it
   std::vector<double> light_offset_;
   std::vector<double> tightest_;  // per junction: the largest curvature of a way across it
+  std::vector<int> walkers_on_;   // per crosswalk: the walkers that may cross it now
 };
 
 int sample_count(double duration) { return int(std::ceil((duration + kFrame) / kStep)) + 1; }
@@ -384,62 +491,88 @@ double Track::distance_at(double t) const {
   return distance[k] + (x - double(k)) * (distance[k + 1] - distance[k]);
 }
 
+double SidewalkLoop::lift(double s) const {
+  double lift = kCurb;
+  for (const LoopCrossing& c : crossings) {
+    const double off_road = std::max(c.s_in - s, s - c.s_out);  // < 0 on the road
+    lift = std::min(lift, kCurb * std::clamp(off_road / 0.5, 0.0, 1.0));
+  }
+  return lift;
+}
+
+namespace {
+
+SidewalkLoop loop_around(const V2& lo, const V2& hi, bool counter_clockwise) {
+  std::vector<V2> corners{lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
+  if (!counter_clockwise) std::reverse(corners.begin(), corners.end());
+  return {rounded_polyline(corners, 0.5, true), {}};
+}
+
+// The stretches of `loop` between the two blocks' facing edges (on the road between them), on
+// the crosswalks there.
+void find_crossings(const Layout& layout, double road_lo, double road_hi, SidewalkLoop& loop) {
+  constexpr double ds = 0.01;
+  const auto on_road = [&](double s) {
+    const double y = loop.path.at(s).position.y();
+    return y > road_lo && y < road_hi;
+  };
+  for (double s = 0; s < loop.path.length(); s += ds) {
+    if (!on_road(s) || (s > 0 && on_road(s - ds))) continue;
+    double end = s;
+    while (on_road(end + ds)) end += ds;
+    const V2 middle = loop.path.at((s + end) / 2).position;
+    for (int k = 0; k < int(layout.crosswalks.size()); ++k)
+      if (layout.crosswalks[k].contains(middle)) loop.crossings.push_back({s, end, k});
+  }
+}
+
+}  // namespace
+
 std::vector<SidewalkLoop> sidewalk_loops(const Layout& layout) {
   std::vector<SidewalkLoop> loops;
-  const double width = layout.style.sidewalk;
-  for (const Block& block : layout.blocks) {
-    if (!block.inner) continue;
-    for (const double inset : {0.3 * width + 0.2, 0.8 * width}) {
-      const V2 lo = block.lo + V2::Constant(inset), hi = block.hi - V2::Constant(inset);
-      std::vector<V2> corners{lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
-      if (loops.size() % 2) std::reverse(corners.begin(), corners.end());  // walk both ways
-      loops.push_back({rounded_polyline(corners, 0.5, true)});
+  const double width = layout.style.sidewalk, near = 0.3 * width + 0.2, far = 0.8 * width;
+  std::vector<char> paired(layout.blocks.size(), 0);
+  for (std::size_t a = 0; a < layout.blocks.size(); ++a) {
+    const Block& low = layout.blocks[a];
+    if (!low.inner) continue;
+    loops.push_back(loop_around(low.lo + V2::Constant(far), low.hi - V2::Constant(far), false));
+    if (paired[a]) continue;
+    // the block right above across one road, of the same width: one loop round both
+    std::size_t b = a + 1;
+    while (b < layout.blocks.size() &&
+           !(layout.blocks[b].inner && !paired[b] && layout.blocks[b].lo.x() == low.lo.x() &&
+             layout.blocks[b].hi.x() == low.hi.x() && layout.blocks[b].lo.y() > low.hi.y() &&
+             layout.blocks[b].lo.y() < low.hi.y() + 30))
+      ++b;
+    if (b == layout.blocks.size()) {
+      loops.push_back(loop_around(low.lo + V2::Constant(near), low.hi - V2::Constant(near), true));
+      continue;
     }
+    paired[b] = 1;
+    const Block& high = layout.blocks[b];
+    loops.push_back(loop_around(low.lo + V2::Constant(near), high.hi - V2::Constant(near), true));
+    find_crossings(layout, low.hi.y(), high.lo.y(), loops.back());
   }
   return loops;
 }
 
-std::vector<Track> simulate_vehicles(const Layout& layout, const std::vector<VehicleStart>& starts,
-                                     double duration, std::uint64_t seed) {
-  Traffic traffic(layout, starts, seed);
-  std::vector<Track> tracks(starts.size(), Track{kStep, {}, {}});
+TrafficTracks simulate_traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
+                               const std::vector<VehicleStart>& vehicles,
+                               const std::vector<WalkerStart>& walkers, double duration,
+                               std::uint64_t seed) {
+  Traffic traffic(layout, loops, vehicles, walkers, seed);
+  TrafficTracks tracks{std::vector<Track>(vehicles.size(), Track{kStep, {}, {}}),
+                       std::vector<Track>(walkers.size(), Track{kStep, {}, {}})};
   const int samples = sample_count(duration);
   for (int n = 0; n < samples; ++n) {
     if (n > 0) traffic.step(n * kStep);
-    for (std::size_t i = 0; i < starts.size(); ++i) {
-      tracks[i].poses.push_back(traffic.pose(int(i)));
-      tracks[i].distance.push_back(traffic.travelled(int(i)));
+    for (std::size_t i = 0; i < vehicles.size(); ++i) {
+      tracks.vehicles[i].poses.push_back(traffic.pose(int(i)));
+      tracks.vehicles[i].distance.push_back(traffic.travelled(int(i)));
     }
-  }
-  return tracks;
-}
-
-std::vector<Track> simulate_walkers(const Layout& layout, const std::vector<SidewalkLoop>& loops,
-                                    const std::vector<WalkerStart>& starts, double duration) {
-  constexpr double kBody = 0.6, kGap = 0.6, kWalkHeadway = 0.8;
-  std::vector<double> s(starts.size()), speed(starts.size()), travelled(starts.size(), 0);
-  for (std::size_t i = 0; i < starts.size(); ++i) s[i] = starts[i].s, speed[i] = starts[i].speed;
-  std::vector<Track> tracks(starts.size(), Track{kStep, {}, {}});
-  const int samples = sample_count(duration);
-  for (int n = 0; n < samples; ++n) {
-    if (n > 0) {
-      std::vector<double> next(starts.size());
-      for (std::size_t i = 0; i < starts.size(); ++i) {
-        const double length = loops[starts[i].loop].path.length();
-        double gap = kInf;
-        for (std::size_t k = 0; k < starts.size(); ++k)
-          if (k != i && starts[k].loop == starts[i].loop)
-            gap = std::min(gap, std::fmod(s[k] - s[i] + length, length) - kBody);
-        next[i] = next_speed(speed[i], starts[i].speed, gap, kGap, kWalkHeadway, 1.0);
-      }
-      for (std::size_t i = 0; i < starts.size(); ++i) {
-        speed[i] = next[i], travelled[i] += next[i] * kStep;
-        s[i] = std::fmod(s[i] + next[i] * kStep, loops[starts[i].loop].path.length());
-      }
-    }
-    for (std::size_t i = 0; i < starts.size(); ++i) {
-      tracks[i].poses.push_back(ground_pose(layout, loops[starts[i].loop].path.at(s[i]), kCurb));
-      tracks[i].distance.push_back(travelled[i]);
+    for (std::size_t i = 0; i < walkers.size(); ++i) {
+      tracks.walkers[i].poses.push_back(traffic.walker_pose(int(i)));
+      tracks.walkers[i].distance.push_back(traffic.walked(int(i)));
     }
   }
   return tracks;

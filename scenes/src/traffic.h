@@ -32,16 +32,35 @@ struct WalkerStart {
   double s, speed;
 };
 
-struct SidewalkLoop {
-  Path path;  // closed
+// Where a walking loop crosses a road: on a crosswalk between s_in and s_out.
+struct LoopCrossing {
+  double s_in, s_out;
+  int crosswalk;  // index into Layout::crosswalks
 };
 
+struct SidewalkLoop {
+  Path path;  // closed
+  std::vector<LoopCrossing> crossings;
+  // The ground lift of a walker at s: the kerb's height on the sidewalk, stepping down to the road
+  // over the last 0.5 m before a crossing (and up after it).
+  double lift(double s) const;
+};
+
+// Two loops per block, one each way along its sidewalks; blocks above one another pair up their
+// counter-clockwise loops into one round both, crossing the road between them at the crosswalks
+// on either end.
 std::vector<SidewalkLoop> sidewalk_loops(const Layout& layout);
 
-// Tracks sampled every 1/60 s from 0 to `duration` (plus one frame), in the order given.
-std::vector<Track> simulate_vehicles(const Layout& layout, const std::vector<VehicleStart>& starts,
-                                     double duration, std::uint64_t seed);
-std::vector<Track> simulate_walkers(const Layout& layout, const std::vector<SidewalkLoop>& loops,
-                                    const std::vector<WalkerStart>& starts, double duration);
+struct TrafficTracks {
+  std::vector<Track> vehicles, walkers;  // in the order of their starts
+};
+
+// Tracks sampled every 1/60 s from 0 to `duration` (plus one frame). Walkers cross at a crosswalk
+// when its signal lets them (the road they cross has red; roundabouts: always) and no vehicle
+// that may cross the junction passes it; vehicles are not let across a crosswalk with walkers.
+TrafficTracks simulate_traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
+                               const std::vector<VehicleStart>& vehicles,
+                               const std::vector<WalkerStart>& walkers, double duration,
+                               std::uint64_t seed);
 
 }  // namespace flowscape

@@ -168,9 +168,9 @@ TEST_CASE(
           const Area area = city.area_at(c);
           INFO("actor " << a << ", frame " << frame << ", corner " << c.transpose());
           if (walker[a])
-            REQUIRE(area == Area::SideWalk);
+            REQUIRE((area == Area::SideWalk || area == Area::Crossing));
           else
-            REQUIRE((area == Area::Road || area == Area::Junction));
+            REQUIRE((area == Area::Road || area == Area::Junction || area == Area::Crossing));
         }
         for (const auto& solid : city.solids) REQUIRE_FALSE(overlap(boxes[a], solid));
         for (std::size_t b = a + 1; b < boxes.size(); ++b) {
@@ -228,6 +228,31 @@ TEST_CASE("vehicles stop at junctions and go on and pedestrians swing their limb
     REQUIRE(walker.parts.size() > 1);
     const Part& leg = walker.parts[1];  // a limb moves relative to the body
     CHECK((leg.pose(0.2).linear() - leg.pose(0.6).linear()).norm() > 0.01);
+  }
+}
+
+TEST_CASE("pedestrians cross roads on the crosswalks, and vehicles never meet them there") {
+  for (const int map : {0, 4}) {  // lights and a roundabout (walkers have priority there)
+    CityConfig config;
+    config.map = map, config.seed = 3, config.vehicles = 100, config.pedestrians = 100;
+    config.duration = 40, config.ego_start = 5;
+    const City city = make_city(config);
+    INFO("map " << map_name(map));
+    int crossing = 0;
+    for (double t = 0; t < 40; t += 0.25) {
+      std::vector<std::array<V2, 4>> walkers, vehicles{corners(ego_footprint(city, t))};
+      for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
+        const Box2 box = footprint(city.scene.actors[a], t);
+        if (city.actors[a].kind != ActorKind::Pedestrian)
+          vehicles.push_back(corners(box));
+        else if (city.area_at(box.centre) == Area::Crossing)
+          walkers.push_back(corners(box));
+      }
+      crossing += int(walkers.size());
+      for (const auto& w : walkers)
+        for (const auto& v : vehicles) REQUIRE_FALSE(overlap(w, v));
+    }
+    CHECK(crossing > 20);  // walker samples on a crosswalk
   }
 }
 

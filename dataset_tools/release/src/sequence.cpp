@@ -28,7 +28,13 @@ RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) co
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth) {
-  const FramePair pair = sequence.frame_pair(frame);
+  return release_color(config, sequence, renderer, camera, sequence.frame_pair(frame), frame,
+                       truth);
+}
+
+Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, const FramePair& pair,
+                           int frame, const GroundTruth& truth) {
   const ColorLayers layers =
       renderer.color_layers(camera, pair, sequence.color_options(config, frame));
   if (config.denoise == "none") return raw_color(layers);

@@ -62,7 +62,7 @@ RigMount random_mount(std::uint64_t seed);
 Pose mount_pose(const RigMount& mount, double distance);
 
 // Ground areas of the layout, for placing and checking things.
-enum class Area : std::uint8_t { Road, Junction, SideWalk, Block, Water, Outside };
+enum class Area : std::uint8_t { Road, Junction, SideWalk, Block, Water, Outside, Crossing };
 
 struct City {
   CityConfig config;

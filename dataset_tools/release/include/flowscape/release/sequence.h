@@ -47,6 +47,10 @@ Sequence make_sequence(const SequenceSpec& spec);
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth);
+// The same from another viewpoint than the rig's (`pair`, at the frame's times).
+Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, const FramePair& pair,
+                           int frame, const GroundTruth& truth);
 
 // meta.json of a planned sequence of a release.
 SequenceMeta sequence_meta(const Sequence& sequence, const SequencePlan& plan,
