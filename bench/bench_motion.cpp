@@ -1,7 +1,8 @@
 // bench_motion [SEEDS] [FRAMES]: how the traffic drives, measured from the poses of every vehicle
 // (and the ego) at 30 Hz on every map: the largest change of yaw rate from one frame to the next,
 // the largest longitudinal acceleration and braking, the largest lateral acceleration, the mean
-// speed, and how many vehicles share a junction. Issue 18 asks for motion a vehicle model allows.
+// speed, how many vehicles share a junction, and how many lane changes they make. Issue 18 asks for
+// motion a vehicle model allows.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@ struct Extremes {
   double yaw_change = 0, acceleration = 0, braking = 0, lateral = 0, speed_sum = 0;
   long speed_samples = 0;
   int junction_peak = 0;
+  long lane_changes = 0;  // a vehicle on a straight road heading off its axis by over 2 degrees
   long junction_frames = 0, shared_frames = 0;  // frames with vehicles in a junction / with two+
 };
 
@@ -42,6 +44,18 @@ void measure_track(const PoseTrack& track, int frames, Extremes& e, bool ego, do
     e.braking = std::max(e.braking, (v0 - v1) / kFrame);
     e.lateral = std::max(e.lateral, std::abs(rate1) * v1);
     e.speed_sum += v1, ++e.speed_samples;
+  }
+}
+
+// Roads run along x or y; between junctions a vehicle heads off both axes only changing lanes.
+void count_lane_changes(const City& city, const PoseTrack& track, int frames, Extremes& e) {
+  bool changing = false;
+  for (int f = 0; f < frames; ++f) {
+    const Pose p = track(f * kFrame);
+    const double off_axis = std::abs(std::remainder(yaw(p), kPi / 2));
+    const bool now = city.area_at(ground(p)) == Area::Road && off_axis > 2 * kPi / 180;
+    e.lane_changes += now && !changing;
+    changing = now;
   }
 }
 
@@ -69,10 +83,10 @@ int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::stoi(argv[1]) : 2, frames = argc > 2 ? std::stoi(argv[2]) : 100;
   std::printf("%d cities per map, 120 vehicles + 80 pedestrians, %d frames at 30 Hz\n", seeds,
               frames);
-  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s\n", "map", "ego dw", "all dw", "accel",
-              "brake", "lateral", "speed", "junction", "shared");
-  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s\n", "", "rad/s/fr", "rad/s/fr", "m/s2", "m/s2",
-              "m/s2", "m/s", "peak", "frames");
+  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s %8s\n", "map", "ego dw", "all dw", "accel",
+              "brake", "lateral", "speed", "junction", "shared", "lane");
+  std::printf("%-11s %9s %9s %7s %7s %7s %6s %9s %8s %8s\n", "", "rad/s/fr", "rad/s/fr", "m/s2",
+              "m/s2", "m/s2", "m/s", "peak", "frames", "changes");
   for (int map = 0; map < kMapCount; ++map) {
     Extremes e;
     double ego_change = 0;
@@ -86,14 +100,17 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k < city.actors.size(); ++k)
         if (city.actors[k].kind != ActorKind::Pedestrian)
           vehicles.push_back(city.scene.actors[k].pose);
-      for (std::size_t k = 0; k < vehicles.size(); ++k)
+      for (std::size_t k = 0; k < vehicles.size(); ++k) {
         measure_track(vehicles[k], frames, e, k == 0, &ego_change);
+        count_lane_changes(city, vehicles[k], frames, e);
+      }
       measure_junctions(city, vehicles, frames, e);
     }
-    std::printf("%-11s %9.3f %9.3f %7.2f %7.2f %7.2f %6.2f %9d %7.0f%%\n", map_name(map).c_str(),
-                ego_change, e.yaw_change, e.acceleration, e.braking, e.lateral,
-                e.speed_sum / double(e.speed_samples), e.junction_peak,
-                100.0 * double(e.shared_frames) / double(std::max(1L, e.junction_frames)));
+    std::printf("%-11s %9.3f %9.3f %7.2f %7.2f %7.2f %6.2f %9d %7.0f%% %8ld\n",
+                map_name(map).c_str(), ego_change, e.yaw_change, e.acceleration, e.braking,
+                e.lateral, e.speed_sum / double(e.speed_samples), e.junction_peak,
+                100.0 * double(e.shared_frames) / double(std::max(1L, e.junction_frames)),
+                e.lane_changes);
   }
   std::printf(
       "(model: acceleration <= 2.5, braking <= 3, lateral <= 3 m/s^2, yaw-rate change <= "

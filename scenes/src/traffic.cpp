@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "flowscape/core/random.h"
 
@@ -19,6 +20,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;
 constexpr double kBraking = 3.0, kCurveBraking = 2.0, kLateral = 3.0, kLookAhead = 250;
 constexpr double kLightCycle = 8.0, kApproach = 25.0, kSample = 0.5;
+// Lane changes: over 3 s at the speed when it starts (at least 20 m), no faster until it is done
+// (lateral acceleration at most 3.5 * 5.77 / 3^2 = 2.2 m/s^2), done 12 m before the lane's end;
+// without a slow leader a vehicle changes lanes at random this often (per second).
+constexpr double kChangeSeconds = 3.0, kChangeMinimum = 20.0, kChangeRate = 0.05;
 // Walkers: body length along the way, gap, headway, acceleration; how close to the kerb they ask
 // to cross, and how far a vehicle's way must keep from a crosswalk with walkers on it.
 constexpr double kBody = 0.6, kWalkGap = 0.6, kWalkHeadway = 0.8, kWalkAcceleration = 1.0;
@@ -108,6 +113,8 @@ struct Walker {
 struct Vehicle {
   double length = 0, width = 0, wish = 0;
   int lane = 0, next_lane = -1;
+  int change_from = -1;  // the lane it is changing from, or -1
+  double change_start = 0, change_length = 0;
   const Connector* connector = nullptr;  // from lane to next_lane
   int held = -1;                         // the junction it may cross (or is leaving), or -1
   bool in_junction = false;
@@ -116,6 +123,16 @@ struct Vehicle {
   // ends in the tightest curve (chord offset L^2 k / 8).
   double sweep() const { return width / 2 + length * length * connector->curvature / 8; }
 };
+
+// On `lane` (not in a junction), a vehicle changing lanes counting on both.
+bool on_lane(const Vehicle& v, int lane) {
+  return !v.in_junction && (v.lane == lane || v.change_from == lane);
+}
+
+// A lane change moves sideways by the smootherstep f(u) = 6u^5 - 15u^4 + 10u^3 of the share u of
+// its length driven: f' and f'' vanish at both ends, so heading and curvature stay continuous.
+double smootherstep(double u) { return u * u * u * (10 + u * (-15 + 6 * u)); }
+double smootherstep_slope(double u) { return 30 * u * u * (1 + u * (-2 + u)); }
 
 class Traffic {
  public:
@@ -133,6 +150,13 @@ class Traffic {
     outgoing_.resize(layout.node_height.size());
     for (int l = 0; l < int(layout.lanes.size()); ++l) outgoing_[layout.lanes[l].from].push_back(l);
     make_connectors();
+    parallel_.resize(layout.lanes.size());
+    for (int a = 0; a < int(layout.lanes.size()); ++a)
+      for (int b = 0; b < int(layout.lanes.size()); ++b) {
+        const Lane &la = layout.lanes[a], &lb = layout.lanes[b];
+        if (la.from == lb.from && la.to == lb.to && std::abs(la.index - lb.index) == 1)
+          parallel_[a].push_back(b);
+      }
     for (double& offset : light_offset_) offset = random_.uniform(0, 2 * kLightCycle);
     for (const VehicleStart& start : starts) {
       Vehicle v;
@@ -149,6 +173,7 @@ class Traffic {
   }
 
   void step(double t) {
+    change_lanes();
     grant(t);
     let_walkers_cross(t);
     std::vector<double> speeds(vehicles_.size()), paces(walkers_.size());
@@ -165,8 +190,7 @@ class Traffic {
 
   Pose pose(int i) const {
     const Vehicle& v = vehicles_[i];
-    const Path& path = v.in_junction ? v.connector->path : layout_.lanes[v.lane].path;
-    return ground_pose(layout_, path.at(v.s), 0);
+    return ground_pose(layout_, v.in_junction ? v.connector->path.at(v.s) : lane_point(v), 0);
   }
   double travelled(int i) const { return vehicles_[i].travelled; }
   Pose walker_pose(int i) const {
@@ -179,6 +203,88 @@ class Traffic {
  private:
   int node_of(int lane) const { return layout_.lanes[lane].to; }
   double lane_length(int lane) const { return layout_.lanes[lane].path.length(); }
+
+  // Where a vehicle on a lane is: on it, or between it and the lane it changes from.
+  PathPoint lane_point(const Vehicle& v) const {
+    PathPoint p = layout_.lanes[v.lane].path.at(v.s);
+    if (v.change_from < 0) return p;
+    const V2 away = layout_.lanes[v.change_from].path.at(v.s).position - p.position;
+    const double u = std::clamp((v.s - v.change_start) / v.change_length, 0.0, 1.0);
+    p.position += (1 - smootherstep(u)) * away;
+    p.direction = (p.direction - smootherstep_slope(u) / v.change_length * away).normalized();
+    return p;
+  }
+
+  // Where vehicle o is along `lane`: on it, or (negative) on its way into it across a junction.
+  std::optional<double> position_on(const Vehicle& o, int lane) const {
+    if (on_lane(o, lane)) return o.s;
+    if (o.in_junction && o.next_lane == lane) return o.s - o.connector->path.length();
+    return std::nullopt;
+  }
+
+  // The nearest vehicles ahead of and behind vehicle i's place on `lane` (or -1).
+  std::pair<int, int> neighbours(int i, int lane) const {
+    int ahead = -1, behind = -1;
+    double ahead_s = kInf, behind_s = -kInf;
+    for (int k = 0; k < int(vehicles_.size()); ++k) {
+      const std::optional<double> s = position_on(vehicles_[k], lane);
+      if (k == i || !s) continue;
+      if (*s >= vehicles_[i].s && *s < ahead_s) ahead = k, ahead_s = *s;
+      if (*s<vehicles_[i].s&& * s> behind_s) behind = k, behind_s = *s;
+    }
+    return {ahead, behind};
+  }
+
+  // The free road between vehicle i (taken to be on `lane`) and vehicle k on `lane`, ahead of it
+  // or (negative k's place minus i's) behind it.
+  double body_gap(int i, int k, int lane) const {
+    const double half_lengths = (vehicles_[i].length + vehicles_[k].length) / 2;
+    return std::abs(*position_on(vehicles_[k], lane) - vehicles_[i].s) - half_lengths;
+  }
+
+  // Nobody on `lane` would have to brake harder than Gipps' rule plans for if vehicle i were there.
+  bool room_to_change(int i, int lane) const {
+    const Vehicle& v = vehicles_[i];
+    const auto [ahead, behind] = neighbours(i, lane);
+    if (ahead >= 0) {
+      const Vehicle& o = vehicles_[ahead];
+      const double gap = body_gap(i, ahead, lane);
+      if (gap < kStandstill || v.speed > safe_speed(gap, o.speed)) return false;
+    }
+    if (behind >= 0) {
+      const Vehicle& o = vehicles_[behind];
+      const double gap = body_gap(i, behind, lane);
+      if (gap < kStandstill || o.speed > safe_speed(gap, v.speed)) return false;
+    }
+    return true;
+  }
+
+  // Changes lanes on multi-lane roads: to pass a leader slower than it wishes to drive (where the
+  // other lane moves faster), else now and then at random; never near the lane's end, while
+  // holding a junction, or where the other lane has no room.
+  void change_lanes() {
+    for (int i = 0; i < int(vehicles_.size()); ++i) {
+      Vehicle& v = vehicles_[i];
+      if (v.in_junction || v.held >= 0 || v.change_from >= 0 || parallel_[v.lane].empty()) continue;
+      const double length = std::max(kChangeMinimum, kChangeSeconds * v.speed);
+      if (v.s < 2 || lane_length(v.lane) - v.s < length + 12) continue;
+      const int leader = neighbours(i, v.lane).first;
+      const bool held_up =
+          leader >= 0 && body_gap(i, leader, v.lane) < 40 && vehicles_[leader].speed < v.wish - 2;
+      const bool whim = random_.chance(kChangeRate * kStep);
+      if (!held_up && !whim) continue;
+      for (const int other : parallel_[v.lane]) {
+        const int other_leader = neighbours(i, other).first;
+        const bool faster =
+            other_leader < 0 || body_gap(i, other_leader, other) > 60 ||
+            vehicles_[other_leader].speed > vehicles_[leader < 0 ? i : leader].speed + 1;
+        if ((held_up && !faster) || !room_to_change(i, other)) continue;
+        v.change_from = v.lane, v.lane = other, v.change_start = v.s, v.change_length = length;
+        choose_next(v);
+        break;
+      }
+    }
+  }
 
   // Every way across every junction (into any lane of another road), and the tightest of them.
   void make_connectors() {
@@ -328,7 +434,7 @@ class Traffic {
   double last_rear(int lane) const {
     double rear = kInf;
     for (const Vehicle& o : vehicles_)
-      if (!o.in_junction && o.lane == lane) rear = std::min(rear, o.s - o.length / 2);
+      if (on_lane(o, lane)) rear = std::min(rear, o.s - o.length / 2);
     return rear;
   }
 
@@ -337,7 +443,7 @@ class Traffic {
     const Vehicle& v = vehicles_[i];
     for (std::size_t k = 0; k < vehicles_.size(); ++k) {
       const Vehicle& o = vehicles_[k];
-      if (int(k) != i && !o.in_junction && o.lane == v.lane && o.s > v.s &&
+      if (int(k) != i && on_lane(o, v.lane) && o.s > v.s &&
           !(cleared(o) && o.connector == v.connector))
         return true;
     }
@@ -376,7 +482,7 @@ class Traffic {
     for (std::size_t i = 0; i < vehicles_.size(); ++i) {
       Vehicle& v = vehicles_[i];
       const int node = node_of(v.lane);
-      if (v.in_junction || v.held >= 0) continue;
+      if (v.in_junction || v.held >= 0 || v.change_from >= 0) continue;
       const double to_stop = lane_length(v.lane) - v.s - v.length / 2;
       const double approach = std::max(kApproach, v.speed * v.speed / (2 * kBraking) + v.speed);
       if (to_stop > approach || !green(v.lane, t) || blocked_on_lane(int(i)) || !room_on_next(v))
@@ -409,8 +515,10 @@ class Traffic {
       if (int(k) == i) continue;
       if (o.in_junction && o.lane == v.lane && (o.s > v.s || !v.in_junction))
         behind(to_way + o.s, o);
-      if (!v.in_junction && !o.in_junction && o.lane == v.lane && o.s > v.s) behind(o.s - v.s, o);
-      if (cleared(v) && !o.in_junction && o.lane == v.next_lane) behind(to_next + o.s, o);
+      if (!v.in_junction && o.s > v.s &&
+          (on_lane(o, v.lane) || (v.change_from >= 0 && on_lane(o, v.change_from))))
+        behind(o.s - v.s, o);
+      if (cleared(v) && on_lane(o, v.next_lane)) behind(to_next + o.s, o);
     }
     if (!cleared(v)) limit = std::min(limit, safe_speed(lane - v.s - half + kStandstill - 0.5, 0));
     double curve = std::min(
@@ -422,12 +530,21 @@ class Traffic {
     if (tightest_[node_of(v.next_lane)] > 0)
       curve = std::min(curve, kLateral / tightest_[node_of(v.next_lane)] +
                                   2 * kCurveBraking * std::max(0.0, after));
+    if (v.change_from >= 0) limit = std::min(limit, v.change_length / kChangeSeconds);
     return std::min(limit, std::sqrt(curve));
   }
 
   void advance(int i, double speed) {
     Vehicle& v = vehicles_[i];
-    v.speed = speed, v.s += speed * kStep, v.travelled += speed * kStep;
+    v.speed = speed, v.travelled += speed * kStep;
+    if (v.change_from >= 0) {  // along the lane a little less than along the curve driven
+      const double u = (v.s - v.change_start) / v.change_length;
+      const double sideways = smootherstep_slope(u) / v.change_length * kLaneWidth;
+      v.s += speed * kStep / std::sqrt(1 + sideways * sideways);
+      if (v.s >= v.change_start + v.change_length) v.change_from = -1;
+    } else {
+      v.s += speed * kStep;
+    }
     if (!v.in_junction && v.s > lane_length(v.lane)) {
       v.s -= lane_length(v.lane);
       v.in_junction = true;
@@ -465,6 +582,7 @@ class Traffic {
   std::vector<double> light_offset_;
   std::vector<double> tightest_;  // per junction: the largest curvature of a way across it
   std::vector<int> walkers_on_;   // per crosswalk: the walkers that may cross it now
+  std::vector<std::vector<int>> parallel_;  // per lane: the lanes beside it, the same way
 };
 
 int sample_count(double duration) { return int(std::ceil((duration + kFrame) / kStep)) + 1; }

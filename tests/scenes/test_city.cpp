@@ -231,6 +231,35 @@ TEST_CASE("vehicles stop at junctions and go on and pedestrians swing their limb
   }
 }
 
+TEST_CASE("vehicles change lanes on multi-lane roads, sideways by exactly one lane") {
+  // Roads run along x or y and lanes are straight: between junctions a vehicle heads off its
+  // road's axis only while it changes lanes, and from the last frame on one lane's axis to the
+  // first on the other's it moves 3.5 m (a lane's width) across the road.
+  CityConfig config = busy(0);
+  config.duration = 20;
+  const City city = make_city(config);
+  const auto yaw = [](const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); };
+  int changes = 0;
+  for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
+    if (city.actors[a].kind == ActorKind::Pedestrian) continue;
+    const PoseTrack& track = city.scene.actors[a].pose;
+    int start = -1;
+    for (int frame = 1; frame < 600; ++frame) {
+      const Pose p = track(frame * kFrame);
+      const bool off_axis = city.area_at(p.translation().head<2>()) == Area::Road &&
+                            std::abs(std::remainder(yaw(p), kPi / 2)) > 1e-6;
+      if (off_axis && start < 0) start = frame - 1;
+      if (off_axis || start < 0) continue;
+      const Pose before = track(start * kFrame);
+      const bool along_x = std::abs(std::cos(yaw(before))) > 0.5;
+      const Eigen::Vector3d moved = p.translation() - before.translation();
+      CHECK(std::abs(along_x ? moved.y() : moved.x()) == Approx(3.5).margin(1e-6));
+      ++changes, start = -1;
+    }
+  }
+  CHECK(changes >= 5);
+}
+
 TEST_CASE("pedestrians cross roads on the crosswalks, and vehicles never meet them there") {
   for (const int map : {0, 4}) {  // lights and a roundabout (walkers have priority there)
     CityConfig config;
