@@ -106,7 +106,7 @@ check "gt_quality: a hostile .flo in a release (parallel reads)" fails_clearly "
 mkdir -p "$work/shards/manifests" "$work/shards/sequences"
 python3 -c 'import json, sys; m = json.load(open(sys.argv[1])); print(json.dumps({"config": m["config"], "shard": 0, "shards": 0, "files": {}}))' \
   "$work/clean/manifest.json" >"$work/shards/manifests/shard-0-of-0.json"
-check "merge: a shard manifest with \"shards\": 0" fails_clearly 'shard-0-of-0.json: bad shard manifest: "shards" must be an integer in 1..' "$bin/flowscape_merge" "$work/shards"
+check "merge: a shard manifest with \"shards\": 0" fails_clearly 'shard-0-of-0.json: bad shard manifest: "shards" 0 is out of range (1..1048576)' "$bin/flowscape_merge" "$work/shards"
 
 python3 - "$work" "$(dirname "$0")/fuzz/corpus/model/triangle.gltf" <<'PY'
 import json, sys

@@ -70,13 +70,15 @@ TEST_CASE("config numbers stay what they say: no wrapping, no truncation") {
     return std::string("accepted");
   };
   CHECK(refused(R"({"maps": 4294967297})") ==
-        "release config: \"maps\" 4294967297 is out of range");
+        "release config: \"maps\" 4294967297 is out of range (-2147483648..2147483647)");
   CHECK(refused(R"({"frames": 4.7})") == "release config: \"frames\" must be an integer (got 4.7)");
   CHECK(refused(R"({"frames": 4.0})") == "release config: \"frames\" must be an integer (got 4.0)");
-  CHECK(refused(R"({"seed": -1})") == "release config: \"seed\" -1 is out of range");
-  CHECK(refused(R"({"spp": 2147483648})") == "release config: \"spp\" 2147483648 is out of range");
+  CHECK(refused(R"({"seed": -1})") ==
+        "release config: \"seed\" -1 is out of range (0..18446744073709551615)");
+  CHECK(refused(R"({"spp": 2147483648})") ==
+        "release config: \"spp\" 2147483648 is out of range (-2147483648..2147483647)");
   CHECK(refused(R"({"spp": -2147483649})") ==
-        "release config: \"spp\" -2147483649 is out of range");
+        "release config: \"spp\" -2147483649 is out of range (-2147483648..2147483647)");
   CHECK(refused(R"({"seed": 18446744073709551615})") == "accepted");
   CHECK(refused(R"({"cube": 1})").find("type must be boolean") != std::string::npos);
   CHECK(refused(R"([1, 2])") == "release config: expected a JSON object");

@@ -10,6 +10,7 @@
 #include "flowscape/release/meta.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
+#include "json_integer.h"
 
 namespace flowscape {
 namespace {
@@ -30,26 +31,10 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("cube", c.cube), visit("models", c.models);
 }
 
-// A JSON number as an integer of type T, refusing fractions and values T cannot hold (JSON
-// numbers would otherwise be truncated or wrapped).
-template <class T>
-T checked_integer(const nlohmann::json& value, const char* key) {
-  const std::string name = std::string("\"") + key + "\" ";
-  if (!value.is_number_integer())
-    throw std::invalid_argument("release config: " + name + "must be an integer (got " +
-                                value.dump() + ")");
-  const bool fits = value.is_number_unsigned()
-                        ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<T>::max())
-                        : value.get<std::int64_t>() >= std::int64_t(std::numeric_limits<T>::min());
-  if (!fits)
-    throw std::invalid_argument("release config: " + name + value.dump() + " is out of range");
-  return value.get<T>();
-}
-
 template <class T>
 T checked_value(const nlohmann::json& value, const char* key) {
   if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>)
-    return checked_integer<T>(value, key);
+    return json_integer<T>(value, key);
   else
     return value.get<T>();
 }
@@ -98,7 +83,7 @@ ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c)
     for_each_field(c, [&](const char* key, auto& field) {
       field = checked_value<std::decay_t<decltype(field)>>(merged.at(key), key);
     });
-  } catch (const nlohmann::json::exception& e) {
+  } catch (const std::exception& e) {  // json's type errors and json_integer's
     throw std::invalid_argument(std::string("release config: ") + e.what());
   }
   validate(c);

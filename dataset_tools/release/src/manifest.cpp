@@ -12,6 +12,7 @@
 #include "flowscape/release/meta.h"
 #include "flowscape/release/sha256.h"
 #include "flowscape/scenes/city.h"
+#include "json_integer.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
@@ -47,15 +48,6 @@ struct ShardManifest {
   nlohmann::json files;
 };
 
-int integer_in(const nlohmann::json& j, const char* key, int lo, int hi) {
-  const nlohmann::json& value = j.at(key);
-  if (!value.is_number_integer() || value < lo || value > hi)
-    throw std::invalid_argument(std::string("\"") + key + "\" must be an integer in " +
-                                std::to_string(lo) + ".." + std::to_string(hi) + " (got " +
-                                value.dump() + ")");
-  return value.get<int>();
-}
-
 // A file entry names a file under sequences/ and its size and hash.
 void check_file_entry(const std::string& name, const nlohmann::json& entry) {
   const fs::path path(name);
@@ -75,8 +67,8 @@ ShardManifest read_shard_manifest(const fs::path& path) {
   try {
     ShardManifest m{path, j.at("config"), 0, 1, {}};
     release_config_from_json(m.config);  // validates
-    m.shards = integer_in(j, "shards", 1, 1 << 20);
-    m.shard = integer_in(j, "shard", 0, m.shards - 1);
+    m.shards = json_integer(j.at("shards"), "shards", 1, 1 << 20);
+    m.shard = json_integer(j.at("shard"), "shard", 0, m.shards - 1);
     m.files = j.at("files");
     if (!m.files.is_object()) throw std::invalid_argument("\"files\" must be an object");
     for (const auto& [name, entry] : m.files.items()) check_file_entry(name, entry);
