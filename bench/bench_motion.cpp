@@ -47,15 +47,18 @@ void measure_track(const PoseTrack& track, int frames, Extremes& e, bool ego, do
   }
 }
 
-// Roads run along x or y; between junctions a vehicle heads off both axes only changing lanes.
+// Roads run along x or y; between junctions a vehicle heads off both axes only changing lanes
+// (back to its heading) or rounding a bend (onto the other axis).
 void count_lane_changes(const City& city, const PoseTrack& track, int frames, Extremes& e) {
-  bool changing = false;
+  int start = -1;
   for (int f = 0; f < frames; ++f) {
     const Pose p = track(f * kFrame);
     const double off_axis = std::abs(std::remainder(yaw(p), kPi / 2));
-    const bool now = city.area_at(ground(p)) == Area::Road && off_axis > 2 * kPi / 180;
-    e.lane_changes += now && !changing;
-    changing = now;
+    const bool now = city.area_at(ground(p)) == Area::Road && off_axis > 1e-6;
+    if (now && start < 0) start = std::max(0, f - 1);
+    if (now || start < 0) continue;
+    e.lane_changes += std::abs(std::remainder(yaw(p) - yaw(track(start * kFrame)), 2 * kPi)) < 1e-6;
+    start = -1;
   }
 }
 

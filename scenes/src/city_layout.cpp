@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "flowscape/core/random.h"
@@ -122,6 +123,7 @@ double Layout::half_width_y(int i) const {
 }
 
 Eigen::Vector2d Layout::junction_reach(int n) const {
+  if (is_bend(n)) return V2::Constant(bend_cut(n));
   return {half_width_y(n % nx()) + kCrosswalk, half_width_x(n / nx()) + kCrosswalk};
 }
 
@@ -139,6 +141,27 @@ bool Layout::has_arm(int n, int arm) const {
   }
 }
 
+bool Layout::is_bend(int n) const {
+  return has_arm(n, 0) != has_arm(n, 1) && has_arm(n, 2) != has_arm(n, 3);  // one each way
+}
+
+std::array<Eigen::Vector2d, 2> Layout::bend_arms(int n) const {
+  return {V2(has_arm(n, 1) ? 1 : -1, 0), V2(0, has_arm(n, 3) ? 1 : -1)};
+}
+
+Eigen::Vector2d Layout::bend_centre(int n) const {
+  const auto arms = bend_arms(n);
+  return node_position(n) + kBendRadius * (arms[0] + arms[1]);
+}
+
+// A lane's clothoid corner of radius r needs about 1.42 r from its corner point on either side;
+// the outermost lane (offset o) turns with kBendRadius + o from a corner point o further out.
+double Layout::bend_cut(int n) const {
+  const int lanes = std::max(lanes_along_x[n / nx()], lanes_along_y[n % nx()]);
+  const double outermost = (lanes - 0.5) * kLaneWidth;
+  return 1.45 * kBendRadius + 0.45 * outermost + 1;
+}
+
 bool Layout::is_roundabout(int n) const {
   const int i = n % nx(), j = n / nx();
   return style.roundabouts && i > 0 && j > 0 && i < nx() - 1 && j < ny() - 1;
@@ -152,10 +175,39 @@ double Layout::height(const V2& p) const {
   return (1 - v) * ((1 - u) * h(0, 0) + u * h(1, 0)) + v * ((1 - u) * h(0, 1) + u * h(1, 1));
 }
 
+int Layout::bend_at(const V2& p) const {
+  for (int n : {node(0, 0), node(nx() - 1, 0), node(0, ny() - 1), node(nx() - 1, ny() - 1)}) {
+    if (!is_bend(n)) continue;
+    const auto arms = bend_arms(n);
+    const double half = half_width_x(n / nx()), cut = bend_cut(n);
+    const double u = (p - node_position(n)).dot(arms[0]), v = (p - node_position(n)).dot(arms[1]);
+    if (u >= -half && v >= -half && u <= cut && v <= cut) return n;
+  }
+  return -1;
+}
+
+// In a bend's square: road within the half width of the centre line (straight, then the circle),
+// the sidewalk inside it, the block beyond.
+std::optional<Area> Layout::bend_area(const V2& p) const {
+  const int n = bend_at(p);
+  if (n < 0) return std::nullopt;
+  const auto arms = bend_arms(n);
+  const double u = (p - node_position(n)).dot(arms[0]), v = (p - node_position(n)).dot(arms[1]);
+  double off = v;  // signed distance from the centre line, positive inside the bend
+  if (v > kBendRadius)
+    off = u;
+  else if (u <= kBendRadius)
+    off = kBendRadius - (p - bend_centre(n)).norm();
+  const double half = half_width_x(n / nx());
+  if (std::abs(off) <= half) return Area::Road;
+  return off > 0 && off <= half + style.sidewalk ? Area::SideWalk : Area::Block;
+}
+
 Area Layout::area(const V2& p) const {
   const V2 low = lo(), high = hi();
   if (p.x() < low.x() || p.y() < low.y() || p.x() > high.x() || p.y() > high.y())
     return Area::Outside;
+  if (const std::optional<Area> bend = bend_area(p)) return *bend;
   double to_road = 1e9;  // distance from p to the nearest road edge
   bool on_x_road = false, on_y_road = false;
   for (int j = 0; j < ny(); ++j)
@@ -219,7 +271,7 @@ Layout make_layout(int map, std::uint64_t seed) {
     }
   for (int n = 0; n < int(layout.node_height.size()); ++n)
     for (int arm = 0; arm < 4; ++arm) {
-      if (!layout.has_arm(n, arm)) continue;
+      if (!layout.has_arm(n, arm) || layout.is_bend(n)) continue;
       const V2 centre = layout.node_position(n), reach = layout.junction_reach(n);
       const double hx = layout.half_width_y(n % layout.nx()),
                    hy = layout.half_width_x(n / layout.nx());

@@ -3,6 +3,7 @@
 // T-junctions and longer blocks) with lanes, junctions, sidewalks and blocks, and the height of
 // the ground under it.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@ struct Style {
 const Style& style_of(int map);
 
 constexpr double kLaneWidth = 3.5, kCrosswalk = 4.0, kCurb = 0.15;
+constexpr double kBendRadius = 15;  // of the centre line where a road bends round a map corner
 
 struct Lane {
   int from, to;  // nodes
@@ -75,6 +77,14 @@ struct Layout {
   bool y_segment(int i, int j) const { return y_open[j * nx() + i]; }
   // The roads leaving node n towards -x, +x, -y, +y (arm 0..3).
   bool has_arm(int n, int arm) const;
+  // A node with two roads at a right angle (a map's corner) is no junction but a bend: the centre
+  // line runs on a circle of kBendRadius round bend_centre, tangent to both roads' centre lines,
+  // and the lanes stop bend_cut from the node (where their clothoid corners start).
+  bool is_bend(int n) const;
+  Eigen::Vector2d bend_centre(int n) const;
+  double bend_cut(int n) const;
+  // The unit directions of a bend's two roads from its node.
+  std::array<Eigen::Vector2d, 2> bend_arms(int n) const;
   Eigen::Vector2d node_position(int n) const { return {xs[n % nx()], ys[n / nx()]}; }
   double median(int lanes) const { return lanes >= 3 ? 2.0 : 0.0; }
   double half_width_x(int j) const;  // of the road along x at ys[j]
@@ -84,6 +94,10 @@ struct Layout {
   bool is_roundabout(int n) const;
   double height(const Eigen::Vector2d& p) const;  // ground (road surface) height
   Area area(const Eigen::Vector2d& p) const;
+  // The bend whose square (from the node less the road's half width to the lanes' ends) holds p,
+  // or -1; and what p is there.
+  int bend_at(const Eigen::Vector2d& p) const;
+  std::optional<Area> bend_area(const Eigen::Vector2d& p) const;
   Eigen::Vector2d lo() const { return {xs.front() - margin, ys.front() - margin}; }
   Eigen::Vector2d hi() const { return {xs.back() + margin, ys.back() + margin}; }
 };

@@ -56,6 +56,28 @@ struct Dress {
 
 constexpr double kFacadeDepth = 0.3;  // the most that frames, sills, ledges and cornices stand out
 
+struct Rect {
+  V2 lo, hi;
+  bool meets(const Rect& o) const {
+    return lo.x() < o.hi.x() && hi.x() > o.lo.x() && lo.y() < o.hi.y() && hi.y() > o.lo.y();
+  }
+};
+
+// `r` less `cut`, a box over one of its corners: two rectangles (one where `cut` does not meet it).
+std::vector<Rect> minus_corner(const Rect& r, const Rect& cut) {
+  if (!r.meets(cut)) return {r};
+  const bool left = cut.lo.x() <= r.lo.x(), below = cut.lo.y() <= r.lo.y();
+  const Rect beside{V2(left ? cut.hi.x() : r.lo.x(), r.lo.y()),
+                    V2(left ? r.hi.x() : cut.lo.x(), r.hi.y())};
+  const Rect rest{
+      V2(left ? r.lo.x() : std::max(r.lo.x(), cut.lo.x()), below ? cut.hi.y() : r.lo.y()),
+      V2(left ? std::min(r.hi.x(), cut.hi.x()) : r.hi.x(), below ? r.hi.y() : cut.lo.y())};
+  std::vector<Rect> out;
+  for (const Rect& part : {beside, rest})
+    if (part.hi.x() > part.lo.x() && part.hi.y() > part.lo.y()) out.push_back(part);
+  return out;
+}
+
 class WorldBuilder {
  public:
   WorldBuilder(const Layout& layout, std::uint64_t seed, Scene& scene)
@@ -139,23 +161,62 @@ class WorldBuilder {
       for (int i = 0, end = 0; i + 1 < layout_.nx(); i = std::max(i + 1, end)) {
         for (end = i; end + 1 < layout_.nx() && layout_.x_segment(end, j);) ++end;
         if (end == i) continue;
-        patch(V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] - layout_.half_width_x(j)),
-              V2(layout_.xs[end] + layout_.half_width_y(end),
-                 layout_.ys[j] + layout_.half_width_x(j)),
-              0, road, 4, {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
+        const double x0 =
+            bend(i, j) ? layout_.xs[i] + cut(i, j) : layout_.xs[i] - layout_.half_width_y(i);
+        const double x1 = bend(end, j) ? layout_.xs[end] - cut(end, j)
+                                       : layout_.xs[end] + layout_.half_width_y(end);
+        patch(V2(x0, layout_.ys[j] - layout_.half_width_x(j)),
+              V2(x1, layout_.ys[j] + layout_.half_width_x(j)), 0, road, 4,
+              {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
       }
     for (int i = 0; i < layout_.nx(); ++i)
       for (int j = 0; j + 1 < layout_.ny(); ++j)
         if (layout_.y_segment(i, j))
-          patch(
-              V2(layout_.xs[i] - layout_.half_width_y(i), layout_.ys[j] + layout_.half_width_x(j)),
-              V2(layout_.xs[i] + layout_.half_width_y(i),
-                 layout_.ys[j + 1] - layout_.half_width_x(j + 1)),
-              0, road, 4, {V3(layout_.xs[i], 0, 0), V3::UnitY(), -V3::UnitX()});
+          patch(V2(layout_.xs[i] - layout_.half_width_y(i),
+                   layout_.ys[j] + (bend(i, j) ? cut(i, j) : layout_.half_width_x(j))),
+                V2(layout_.xs[i] + layout_.half_width_y(i),
+                   layout_.ys[j + 1] -
+                       (bend(i, j + 1) ? cut(i, j + 1) : layout_.half_width_x(j + 1))),
+                0, road, 4, {V3(layout_.xs[i], 0, 0), V3::UnitY(), -V3::UnitX()});
+    margin_ends();
     for (const Lane& lane : layout_.lanes) markings(lane);
     for (int n = 0; n < int(layout_.node_height.size()); ++n) junction(n);
     for (int j = 0; j < layout_.ny(); ++j)
       if (layout_.median(layout_.lanes_along_x[j]) > 0) barriers(j);
+  }
+
+  // Where a road line would run on into the margin beyond the outermost road: a sidewalk along
+  // that road and ground (the blocks there stop at the road line's edges).
+  void margin_ends() {
+    const V2 low = layout_.lo(), high = layout_.hi();
+    const double w = layout_.style.sidewalk;
+    const Paint walk{C::SideWalk, palette_.pavement}, curb{C::SideWalk, palette_.curb},
+        ground{C::Terrain, palette_.grass};
+    const auto end = [&](const V2& kerb_a, const V2& kerb_b, const V2& outward, double depth) {
+      const V2 walk_end_a = kerb_a + outward * w, walk_end_b = kerb_b + outward * w;
+      const V2 far_b = kerb_b + outward * depth;
+      patch(kerb_a.cwiseMin(walk_end_b), kerb_a.cwiseMax(walk_end_b), kCurb, walk);
+      wall(kerb_a, kerb_b, 0, kCurb, curb);
+      if (layout_.style.water && outward.y() < 0)  // the quay and the water, as the blocks beside
+        return waterfront(walk_end_a.cwiseMin(far_b), walk_end_a.cwiseMax(far_b));
+      patch(walk_end_a.cwiseMin(far_b), walk_end_a.cwiseMax(far_b), kCurb, ground);
+    };
+    const double left = layout_.xs.front() - layout_.half_width_y(0),
+                 right = layout_.xs.back() + layout_.half_width_y(layout_.nx() - 1),
+                 bottom = layout_.ys.front() - layout_.half_width_x(0),
+                 top = layout_.ys.back() + layout_.half_width_x(layout_.ny() - 1);
+    for (int j = 0; j < layout_.ny(); ++j) {
+      const double y0 = layout_.ys[j] - layout_.half_width_x(j),
+                   y1 = layout_.ys[j] + layout_.half_width_x(j);
+      end(V2(left, y1), V2(left, y0), V2(-1, 0), left - low.x());
+      end(V2(right, y0), V2(right, y1), V2(1, 0), high.x() - right);
+    }
+    for (int i = 0; i < layout_.nx(); ++i) {
+      const double x0 = layout_.xs[i] - layout_.half_width_y(i),
+                   x1 = layout_.xs[i] + layout_.half_width_y(i);
+      end(V2(x0, bottom), V2(x1, bottom), V2(0, -1), bottom - low.y());
+      end(V2(x1, top), V2(x0, top), V2(0, 1), high.y() - top);
+    }
   }
 
   // A median barrier and guard rails along road j (a highway) between its junctions.
@@ -187,12 +248,78 @@ class WorldBuilder {
         strip(lane.path.at(s).position + shift, lane.path.at(s + 3).position + shift, 0.15, 0.02,
               white);
     }
+    if (layout_.is_bend(lane.to)) return;  // no stop line before a bend
     // stop line across the lane at its end
     strip(b.position - a.direction * 0.3 - left * (kLaneWidth / 2),
           b.position - a.direction * 0.3 + left * (kLaneWidth / 2), 0.4, 0.02, white);
   }
 
+  bool bend(int i, int j) const { return layout_.is_bend(layout_.node(i, j)); }
+  double cut(int i, int j) const { return layout_.bend_cut(layout_.node(i, j)); }
+
+  // The road round a bend: straight from where the lanes stop to the circle's tangent points, a
+  // quarter annulus between them; its centre and lane lines; a kerb, a curved sidewalk and ground
+  // inside it; ground outside it. (u, v) are distances from the node along the bend's two roads.
+  void bend(int n) {
+    const auto arms = layout_.bend_arms(n);
+    const V2 node = layout_.node_position(n);
+    const double half = layout_.half_width_x(n / layout_.nx()), cut = layout_.bend_cut(n),
+                 walk = layout_.style.sidewalk, r = kBendRadius;
+    const auto at_uv = [&](double u, double v) { return node + u * arms[0] + v * arms[1]; };
+    // the point `off` inside the centre line at share t of the way (0: where the first road's
+    // lanes stop, 1: the second's), and the direction of travel there
+    const double straight = cut - r, arc = r * kPi / 2, total = 2 * straight + arc;
+    const auto along = [&](double t, double off) -> std::pair<V2, V2> {
+      const double s = t * total;
+      if (s <= straight) return {at_uv(cut - s, off), -arms[0]};
+      if (s >= straight + arc) return {at_uv(off, r + s - straight - arc), arms[1]};
+      const double theta = (s - straight) / r;  // from (r, 0) round (r, r) to (0, r)
+      const V2 centre = at_uv(r, r), out = -std::cos(theta) * arms[1] - std::sin(theta) * arms[0];
+      return {centre + (r - off) * out, std::cos(theta) * -arms[0] + std::sin(theta) * arms[1]};
+    };
+    const int steps = 48;
+    const Paint road{C::Road, palette_.asphalt}, yellow{C::RoadLine, palette_.yellow},
+        white{C::RoadLine, palette_.white}, walkway{C::SideWalk, palette_.pavement},
+        kerb{C::SideWalk, palette_.curb}, grass{C::Terrain, palette_.grass};
+    const auto band = [&](double off0, double off1, double lift, Paint paint, bool uv) {
+      for (int k = 0; k < steps; ++k) {
+        const auto [a, da] = along(double(k) / steps, off0);
+        const auto [b, db] = along(double(k + 1) / steps, off0);
+        const V2 c = along(double(k + 1) / steps, off1).first,
+                 d = along(double(k) / steps, off1).first;
+        const V2 left(-da.y(), da.x());
+        const UvFrame frame{V3(a.x(), a.y(), 0) - V3(da.x(), da.y(), 0) * (k * total / steps) +
+                                V3(left.x(), left.y(), 0) * off0,
+                            V3(da.x(), da.y(), 0), V3(left.x(), left.y(), 0)};
+        if (uv)
+          add_quad(mesh_, at(a, lift), at(b, lift), at(c, lift), at(d, lift), paint, frame);
+        else
+          add_quad(mesh_, at(a, lift), at(b, lift), at(c, lift), at(d, lift), paint);
+      }
+    };
+    const int lanes = layout_.lanes_along_x[n / layout_.nx()];
+    band(-half, half, 0, road, true);
+    for (const double off : {-0.18, 0.06}) band(off, off + 0.12, 0.02, yellow, false);
+    for (int k = 1; k < lanes; ++k)
+      for (const double side : {-1.0, 1.0})
+        band(side * k * kLaneWidth - 0.075, side * k * kLaneWidth + 0.075, 0.02, white, false);
+    band(half, half + walk, kCurb, walkway, false);
+    for (int k = 0; k < steps; ++k)  // the kerb's face, seen from the road
+      wall(along(double(k) / steps, half).first, along(double(k + 1) / steps, half).first, 0, kCurb,
+           kerb);
+    // ground inside the sidewalk (fanned from the square's far corner) and outside the road
+    // (from its near corner): both regions are convex
+    const auto fan = [&](const V2& from, double off) {
+      for (int k = 0; k < steps; ++k)
+        add_quad(mesh_, at(from, kCurb), at(along(double(k) / steps, off).first, kCurb),
+                 at(along(double(k + 1) / steps, off).first, kCurb), at(from, kCurb), grass);
+    };
+    fan(at_uv(cut, cut), half + walk);
+    fan(at_uv(-half, -half), -half);
+  }
+
   void junction(int n) {
+    if (layout_.is_bend(n)) return bend(n);
     const V2 centre = layout_.node_position(n), reach = layout_.junction_reach(n);
     const double hx = layout_.half_width_y(n % layout_.nx()),
                  hy = layout_.half_width_x(n / layout_.nx());
@@ -294,9 +421,24 @@ class WorldBuilder {
         std::pair{lo, V2(hi.x(), lo.y())}, std::pair{hi, V2(lo.x(), hi.y())}};
     for (int k = 0; k < 4; ++k) {
       if (!b.road_beside[k]) continue;
-      patch(bands[k].first, bands[k].second, kCurb, walk);
-      wall(edges[k].first, edges[k].second, 0, kCurb, curb);
-      const V2 from = edges[k].first, to = edges[k].second, along = (to - from).normalized();
+      for (const Rect& part : without_bends({bands[k].first, bands[k].second}))
+        patch(part.lo, part.hi, kCurb, walk);
+      // the kerb, shortened where a bend's own kerb takes over
+      V2 from = edges[k].first, to = edges[k].second;
+      for (const Rect& bend : bend_squares_) {
+        const Rect edge{from.cwiseMin(to), from.cwiseMax(to)};
+        if (!Rect{edge.lo - V2::Constant(0.01), edge.hi + V2::Constant(0.01)}.meets(bend)) continue;
+        const V2 along = (to - from).normalized();
+        const auto inside = [&](const V2& p) {
+          return p.x() >= bend.lo.x() - 0.01 && p.x() <= bend.hi.x() + 0.01 &&
+                 p.y() >= bend.lo.y() - 0.01 && p.y() <= bend.hi.y() + 0.01;
+        };
+        const double extent = std::abs((bend.hi - bend.lo).dot(along));
+        if (inside(from)) from += along * extent;
+        if (inside(to)) to -= along * extent;
+      }
+      wall(from, to, 0, kCurb, curb);
+      const V2 along = (to - from).normalized();
       const V2 inward(-along.y(), along.x());
       for (double s = 12; s < (to - from).norm() - 12; s += 30)
         street_light(from + along * s + inward * 0.25, -inward);
@@ -387,8 +529,40 @@ class WorldBuilder {
                      V3((b - a).norm() / 2, 0.03, 0.06), paint);
   }
 
+  // Parts of `r` outside the squares that bends take from the block being built.
+  std::vector<Rect> without_bends(const Rect& r) const {
+    std::vector<Rect> parts{r};
+    for (const Rect& bend : bend_squares_) {
+      std::vector<Rect> next;
+      for (const Rect& part : parts)
+        for (const Rect& piece : minus_corner(part, bend)) next.push_back(piece);
+      parts = std::move(next);
+    }
+    return parts;
+  }
+
+  // The squares of bends at the block's corners (from its corner to where the lanes stop).
+  void find_bend_squares(const Block& b) {
+    bend_squares_.clear();
+    if (!b.inner) return;
+    for (const V2& corner : {b.lo, V2(b.hi.x(), b.lo.y()), b.hi, V2(b.lo.x(), b.hi.y())}) {
+      const int n = layout_.bend_at(corner);
+      if (n < 0) continue;
+      const auto arms = layout_.bend_arms(n);
+      const V2 far = layout_.node_position(n) + layout_.bend_cut(n) * (arms[0] + arms[1]);
+      bend_squares_.push_back({corner.cwiseMin(far), corner.cwiseMax(far)});
+    }
+  }
+
+  bool clear_of_bends(const V2& lo, const V2& hi) const {
+    return std::none_of(bend_squares_.begin(), bend_squares_.end(), [&](const Rect& r) {
+      return Rect{lo, hi}.meets(r);
+    });
+  }
+
   void block(const Block& b) {
     const Style& style = layout_.style;
+    find_bend_squares(b);
     sidewalks(b);
     const double w = style.sidewalk;
     const V2 lo = b.lo + V2(b.road_beside[0] ? w : 0, b.road_beside[2] ? w : 0);
@@ -398,25 +572,28 @@ class WorldBuilder {
     const bool green = park || style.buildings == Style::Buildings::Houses ||
                        style.buildings == Style::Buildings::Farms;
     if (style.water && !b.road_beside[2] && b.road_beside[3]) return waterfront(lo, hi);
-    patch(lo, hi, kCurb,
-          green ? Paint{C::Terrain, palette_.grass}
-                : Paint{C::Ground, style.buildings == Style::Buildings::Warehouses
-                                       ? palette_.dirt
-                                       : palette_.concrete});
+    for (const Rect& part : without_bends({lo, hi}))
+      patch(part.lo, part.hi, kCurb,
+            green ? Paint{C::Terrain, palette_.grass}
+                  : Paint{C::Ground, style.buildings == Style::Buildings::Warehouses
+                                         ? palette_.dirt
+                                         : palette_.concrete});
     if (!park)
       lots(lo, hi, b);
-    else
+    else if (clear_of_bends(V2(lo.x(), lo.y()), V2(hi.x(), lo.y() + 2)))
       fence(V2(lo.x() + 1, lo.y() + 1), V2(hi.x() - 1, lo.y() + 1));
     if (style.rails && !b.road_beside[3]) rails(lo, hi);
     const double spacing = 100 / std::max(0.1, style.trees + (park ? 6 : 0));
     for (double x = lo.x() + 2; x < hi.x() - 2; x += spacing)
       for (double y : {lo.y() + 1.5, hi.y() - 1.5})
-        if (free_of_solids(V2(x, y) - V2(2, 2), V2(x, y) + V2(2, 2))) tree(V2(x, y), kCurb);
+        if (free_of_solids(V2(x, y) - V2(2, 2), V2(x, y) + V2(2, 2)) &&
+            clear_of_bends(V2(x, y) - V2(2, 2), V2(x, y) + V2(2, 2)))
+          tree(V2(x, y), kCurb);
     if (park)
       for (int k = 0; k < 6; ++k) {
         const V2 p(random_.uniform(lo.x() + 4, hi.x() - 4),
                    random_.uniform(lo.y() + 4, hi.y() - 4));
-        tree(p, kCurb);
+        if (clear_of_bends(p - V2(2, 2), p + V2(2, 2))) tree(p, kCurb);
       }
   }
 
@@ -436,9 +613,9 @@ class WorldBuilder {
             std::min(hi.x() - 1 - x, random_.uniform(houses ? 9 : 12, houses ? 14 : 30));
         if (width < 6) break;
         const double depth = random_.uniform(std::min(8.0, max_depth), max_depth);
-        if (random_.chance(style.fill)) {
-          const double y0 = side == 0 ? lo.y() + setback : hi.y() - setback - depth;
-          const V2 blo(x, y0), bhi(x + width, y0 + depth);
+        const double y0 = side == 0 ? lo.y() + setback : hi.y() - setback - depth;
+        const V2 blo(x, y0), bhi(x + width, y0 + depth);
+        if (random_.chance(style.fill) && clear_of_bends(blo - V2(1, 1), bhi + V2(1, 1))) {
           building(blo, bhi, random_.uniform(style.height_min, style.height_max), dress(houses),
                    houses);
           if (houses) {
@@ -454,7 +631,9 @@ class WorldBuilder {
 
   void tank(const V2& lo, const V2& hi, int side) {
     const double y = side == 0 ? hi.y() + 4 : lo.y() - 4, x = (lo.x() + hi.x()) / 2;
-    if (!free_of_solids(V2(x - 3.5, y - 3.5), V2(x + 3.5, y + 3.5))) return;
+    if (!free_of_solids(V2(x - 3.5, y - 3.5), V2(x + 3.5, y + 3.5)) ||
+        !clear_of_bends(V2(x - 3.5, y - 3.5), V2(x + 3.5, y + 3.5)))
+      return;
     add_cylinder(mesh_, upright(V2(x, y), kCurb - 0.3), 3, random_.uniform(4, 9),
                  {C::Static, palette_.tank}, 16);
     solids_.push_back({V2(x - 3, y - 3), V2(x + 3, y - 3), V2(x + 3, y + 3), V2(x - 3, y + 3)});
@@ -493,6 +672,7 @@ class WorldBuilder {
   Palette palette_;
   bool flat_;
   std::vector<Footprint> solids_;
+  std::vector<Rect> bend_squares_;  // of the block being built
 };
 
 }  // namespace

@@ -39,8 +39,9 @@ V2 clothoid_offset(double heading, double curvature, double rate, double t) {
 
 // A corner's curve, appended to `path`: a clothoid transition, an arc of `radius`, a transition;
 // each transition turns a quarter of `turn`, so curvature rises and falls linearly.
-void append_corner(Path& path, double turn, double radius) {
+void append_corner(Path& path, double turn, double radius, bool transitions = true) {
   const double curvature = (turn > 0 ? 1 : -1) / radius;
+  if (!transitions) return path.append(radius * std::abs(turn), curvature, 0);
   const double transition = radius * std::abs(turn) / 2;
   path.append(transition, 0, curvature / transition);
   path.append(radius * std::abs(turn) - transition, curvature, 0);
@@ -48,7 +49,8 @@ void append_corner(Path& path, double turn, double radius) {
 }
 
 // Distance from the corner back to where its curve starts (and on to where it ends: symmetric).
-double tangent_length(double turn, double radius) {
+double tangent_length(double turn, double radius, bool transitions = true) {
+  if (!transitions) return radius * std::tan(std::abs(turn) / 2);
   Path curve;
   append_corner(curve, turn, radius);
   const PathPoint end = curve.at(curve.length());
@@ -135,6 +137,11 @@ PathPoint Path::at(double s) const {
 }
 
 Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed) {
+  return rounded_polyline(corners, std::vector<double>(corners.size(), radius), closed, true);
+}
+
+Path rounded_polyline(const std::vector<V2>& corners, const std::vector<double>& radii, bool closed,
+                      bool transitions) {
   const int n = int(corners.size());
   struct Corner {
     V2 start;  // where the curve leaves the straight line
@@ -151,9 +158,10 @@ Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed
     const auto share = [&](int end) { return !closed && (end == 0 || end == n - 1) ? 1.0 : 0.5; };
     const double room =
         std::min((here - prev).norm() * share(k - 1), (next - here).norm() * share(k + 1));
-    const double tangent = tangent_length(turn, radius), fit = std::min(1.0, room / tangent);
+    const double tangent = tangent_length(turn, radii[k], transitions);
+    const double fit = std::min(1.0, room / tangent);
     rounded.push_back(
-        {here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn, fit * radius});
+        {here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn, fit * radii[k]});
   }
   Path path;
   const V2 first = closed && !rounded.empty() ? rounded.front().start : corners.front();
@@ -161,7 +169,7 @@ Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed
   for (const Corner& c : rounded) {
     path.line_to(c.start);
     if (path.length() == 0) path.start_at(first, c.heading);
-    append_corner(path, c.turn, c.radius);
+    append_corner(path, c.turn, c.radius, transitions);
   }
   path.line_to(closed ? first : corners.back());
   return path;

@@ -334,7 +334,8 @@ class Traffic {
     v.connector = &connectors_.at(std::pair(v.lane, road));
   }
 
-  // Turns at a junction: right on a 6 m corner, left on 10 m. Roundabouts are driven
+  // Turns at a junction: right on a 6 m corner, left on 10 m; round a bend on a corner concentric
+  // with its centre line (kBendRadius less or more the lane's offset). Roundabouts are driven
   // counter-clockwise on a ring round the island, one per lane (4.75 m and 8.25 m; each lane
   // 3 m inside its ring; the outer ring where the lanes differ), except right turns, which take the
   // corner.
@@ -342,6 +343,13 @@ class Traffic {
     const Lane &in = layout_.lanes[lane], &out = layout_.lanes[next];
     const PathPoint a = in.path.at(in.path.length()), b = out.path.at(0);
     const double cross = a.direction.x() * b.direction.y() - a.direction.y() * b.direction.x();
+    if (layout_.is_bend(in.to)) {  // round the bend's centre, inside lanes on smaller circles
+      const V2 from_node = a.position - layout_.node_position(in.to);
+      const double offset =
+          std::abs(from_node.x() * a.direction.y() - from_node.y() * a.direction.x());
+      return turn_path(a.position, a.direction, b.position, b.direction,
+                       kBendRadius + (cross < 0 ? -offset : offset));
+    }
     if (!layout_.is_roundabout(in.to) || cross < -0.5)
       return turn_path(a.position, a.direction, b.position, b.direction, cross < 0 ? 6 : 10);
     const int ring = std::max(in.index, out.index);
@@ -356,7 +364,7 @@ class Traffic {
 
   bool green(int lane, double t) const {
     const int node = node_of(lane);
-    if (layout_.is_roundabout(node)) return true;
+    if (layout_.is_roundabout(node) || layout_.is_bend(node)) return true;
     const bool along_x = std::abs(layout_.lanes[lane].path.at(0).direction.x()) > 0.5;
     return along_x == x_phase(node, t);
   }
@@ -520,7 +528,9 @@ class Traffic {
         behind(o.s - v.s, o);
       if (cleared(v) && on_lane(o, v.next_lane)) behind(to_next + o.s, o);
     }
-    if (!cleared(v)) limit = std::min(limit, safe_speed(lane - v.s - half + kStandstill - 0.5, 0));
+    // before the stop line it may not pass yet: this lane's, or once it may cross, the next one's
+    const double stop = cleared(v) ? to_next + lane_length(v.next_lane) : lane - v.s;
+    limit = std::min(limit, safe_speed(stop - half + kStandstill - 0.5, 0));
     double curve = std::min(
         curve_limit_squared(v.connector->path, std::max(0.0, -to_way), std::max(0.0, to_way)),
         curve_limit_squared(layout_.lanes[v.next_lane].path, 0, to_next));
@@ -620,10 +630,16 @@ double SidewalkLoop::lift(double s) const {
 
 namespace {
 
-SidewalkLoop loop_around(const V2& lo, const V2& hi, bool counter_clockwise) {
+// A walking loop round the rectangle lo..hi: corners of 0.5 m, but round a bend on a circle about
+// the bend's centre (concentric with its kerb, so it stays on the curved sidewalk).
+SidewalkLoop loop_around(const Layout& layout, const V2& lo, const V2& hi, bool counter_clockwise) {
   std::vector<V2> corners{lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
   if (!counter_clockwise) std::reverse(corners.begin(), corners.end());
-  return {rounded_polyline(corners, 0.5, true), {}};
+  std::vector<double> radii(corners.size(), 0.5);
+  for (std::size_t k = 0; k < corners.size(); ++k)
+    if (const int bend = layout.bend_at(corners[k]); bend >= 0)
+      radii[k] = std::abs((layout.bend_centre(bend) - corners[k]).x());
+  return {rounded_polyline(corners, radii, true, false), {}};
 }
 
 // The stretches of `loop` between the two blocks' facing edges (on the road between them), on
@@ -653,7 +669,8 @@ std::vector<SidewalkLoop> sidewalk_loops(const Layout& layout) {
   for (std::size_t a = 0; a < layout.blocks.size(); ++a) {
     const Block& low = layout.blocks[a];
     if (!low.inner) continue;
-    loops.push_back(loop_around(low.lo + V2::Constant(far), low.hi - V2::Constant(far), false));
+    loops.push_back(
+        loop_around(layout, low.lo + V2::Constant(far), low.hi - V2::Constant(far), false));
     if (paired[a]) continue;
     // the block right above across one road, of the same width: one loop round both
     std::size_t b = a + 1;
@@ -663,12 +680,14 @@ std::vector<SidewalkLoop> sidewalk_loops(const Layout& layout) {
              layout.blocks[b].lo.y() < low.hi.y() + 30))
       ++b;
     if (b == layout.blocks.size()) {
-      loops.push_back(loop_around(low.lo + V2::Constant(near), low.hi - V2::Constant(near), true));
+      loops.push_back(
+          loop_around(layout, low.lo + V2::Constant(near), low.hi - V2::Constant(near), true));
       continue;
     }
     paired[b] = 1;
     const Block& high = layout.blocks[b];
-    loops.push_back(loop_around(low.lo + V2::Constant(near), high.hi - V2::Constant(near), true));
+    loops.push_back(
+        loop_around(layout, low.lo + V2::Constant(near), high.hi - V2::Constant(near), true));
     find_crossings(layout, low.hi.y(), high.lo.y(), loops.back());
   }
   return loops;
