@@ -47,17 +47,22 @@ void measure_track(const PoseTrack& track, int frames, Extremes& e, bool ego, do
   }
 }
 
-// Roads run along x or y; between junctions a vehicle heads off both axes only changing lanes
-// (back to its heading) or rounding a bend (onto the other axis).
+// Roads run along x or y (but one diagonal street); between junctions a vehicle heads off both
+// axes only changing lanes (back to its heading, at most 18 degrees off), rounding a bend (onto
+// the other axis) or on the diagonal (45 degrees off).
 void count_lane_changes(const City& city, const PoseTrack& track, int frames, Extremes& e) {
   int start = -1;
+  double most_off = 0;  // a lane change heads at most 18 degrees off, the diagonal street 45
   for (int f = 0; f < frames; ++f) {
     const Pose p = track(f * kFrame);
     const double off_axis = std::abs(std::remainder(yaw(p), kPi / 2));
     const bool now = city.area_at(ground(p)) == Area::Road && off_axis > 1e-6;
-    if (now && start < 0) start = std::max(0, f - 1);
+    if (now && start < 0) start = std::max(0, f - 1), most_off = 0;
+    most_off = std::max(most_off, off_axis);
     if (now || start < 0) continue;
-    e.lane_changes += std::abs(std::remainder(yaw(p) - yaw(track(start * kFrame)), 2 * kPi)) < 1e-6;
+    e.lane_changes +=
+        std::abs(std::remainder(yaw(p) - yaw(track(start * kFrame)), 2 * kPi)) < 1e-6 &&
+        most_off < 20 * kPi / 180;
     start = -1;
   }
 }

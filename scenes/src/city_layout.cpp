@@ -17,20 +17,21 @@ using B = Style::Buildings;
 const Style kStyles[kMapCount] = {
     // name, nx, ny, spacing, lanes, shoulder, sidewalk, buildings, heights, fill, trees, parks,
     // hills, speed, roundabouts, highway, water, rails, tees
-    {"downtown", 5, 5, 65, 85, 2, 2.0, 4.5, B::Towers, 18, 60, 0.95, 2, 0.05, 0, 11},
+    {"downtown", 5, 5, 65, 85, 2, 2.0, 4.5, B::Towers, 18, 60, 0.95, 2, 0.05, 0, 11,
+     false, false, false, false, 0, true},
     {"suburb", 5, 4, 85, 110, 1, 2.5, 3.0, B::Houses, 5, 8, 0.55, 6, 0.1, 0, 10,
-     false, false, false, false, 0.7},
+     false, false, false, false, 0.7, true},
     {"highway", 6, 3, 120, 170, 1, 2.5, 3.0, B::Warehouses, 8, 14, 0.35, 3, 0.2, 0, 12,
      false, true},
     {"rural", 4, 3, 150, 220, 1, 1.5, 2.0, B::Farms, 5, 8, 0.12, 4, 0.3, 3, 14,
      false, false, false, false, 1.0},
     {"roundabout", 5, 5, 80, 100, 2, 2.0, 3.5, B::MidRise, 10, 22, 0.75, 3, 0.1, 0, 10, true},
     {"waterfront", 6, 4, 70, 90, 2, 2.0, 4.0, B::MidRise, 12, 30, 0.8, 4, 0.1, 0, 11,
-     false, false, true},
+     false, false, true, false, 0, true},
     {"industrial", 4, 4, 110, 150, 2, 2.5, 2.5, B::Warehouses, 8, 16, 0.6, 1, 0.05, 0, 11,
      false, false, false, true, 0.7},
     {"hilltown", 5, 5, 70, 90, 1, 2.5, 3.0, B::MidRise, 8, 16, 0.7, 4, 0.1, 10, 9,
-     false, false, false, false, 0.6},
+     false, false, false, false, 0.6, true},
 };
 // clang-format on
 constexpr double kHighwayHeight = 5, kHighwaySpeed = 20;
@@ -104,6 +105,34 @@ void leave_out_segments(Layout& layout, Random& random) {
     }
     joined[c1] = joined[c2] = 1;
   }
+}
+
+// A diagonal street across one inner block with roads on all four sides and junctions (not bends,
+// not roundabouts) at its corners, chosen at random, either way across; one lane each way.
+void add_diagonal(Layout& layout, Random& random) {
+  std::vector<std::pair<int, int>> cells;
+  for (int j = 0; j + 1 < layout.ny(); ++j)
+    for (int i = 0; i + 1 < layout.nx(); ++i) {
+      const bool closed_round = layout.x_segment(i, j) && layout.x_segment(i, j + 1) &&
+                                layout.y_segment(i, j) && layout.y_segment(i + 1, j);
+      bool plain_corners = true;
+      for (const int n : {layout.node(i, j), layout.node(i + 1, j), layout.node(i, j + 1),
+                          layout.node(i + 1, j + 1)})
+        plain_corners &= !layout.is_bend(n) && !layout.is_roundabout(n);
+      if (closed_round && plain_corners) cells.push_back({i, j});
+    }
+  if (cells.empty()) return;
+  const auto [i, j] = cells[random.below(int(cells.size()))];
+  const bool rising =
+      random.chance(0.5);  // from (i, j) to (i + 1, j + 1), else (i + 1, j) to (i, j + 1)
+  const int from = rising ? layout.node(i, j) : layout.node(i + 1, j);
+  const int to = rising ? layout.node(i + 1, j + 1) : layout.node(i, j + 1);
+  const V2 a = layout.node_position(from), b = layout.node_position(to);
+  layout.diagonals.push_back(
+      {from, to, a, (b - a).normalized(), kLaneWidth + layout.style.shoulder});
+  add_lanes(layout, from, to, 1, 0, layout.style.speed);
+  add_lanes(layout, to, from, 1, 0, layout.style.speed);
+  layout.diagonal_cell = {i, j};
 }
 
 }  // namespace
@@ -227,6 +256,12 @@ Area Layout::area(const V2& p) const {
   if (on_x_road && on_y_road) return Area::Junction;
   for (const Crosswalk& c : crosswalks)
     if (c.contains(p)) return Area::Crossing;
+  for (const Block& block : blocks)  // a plaza: the diagonal street, paving either side
+    if (block.diagonal >= 0 && p.x() >= block.lo.x() && p.y() >= block.lo.y() &&
+        p.x() <= block.hi.x() && p.y() <= block.hi.y()) {
+      const Diagonal& d = diagonals[block.diagonal];
+      return std::abs(d.offset(p)) <= d.half_width ? Area::Road : Area::SideWalk;
+    }
   if (on_x_road || on_y_road) return Area::Road;
   if (to_road <= style.sidewalk) return Area::SideWalk;
   if (style.water && p.y() < ys.front() - half_width_x(0) - style.sidewalk - 8) return Area::Water;
@@ -269,6 +304,7 @@ Layout make_layout(int map, std::uint64_t seed) {
       add_lanes(layout, a, b, lanes, layout.median(lanes), style.speed);
       add_lanes(layout, b, a, lanes, layout.median(lanes), style.speed);
     }
+  if (style.diagonal) add_diagonal(layout, random);
   for (int n = 0; n < int(layout.node_height.size()); ++n)
     for (int arm = 0; arm < 4; ++arm) {
       if (!layout.has_arm(n, arm) || layout.is_bend(n)) continue;
@@ -297,10 +333,12 @@ Layout make_layout(int map, std::uint64_t seed) {
       const int j1 = inner && !layout.x_segment(i, j + 1) ? j + 2 : j + 1;
       const double x0 = i < 0 ? low.x() : layout.xs[i] + layout.half_width_y(i);
       const double y0 = j < 0 ? low.y() : layout.ys[j] + layout.half_width_x(j);
+      const bool plaza = !layout.diagonals.empty() && layout.diagonal_cell == std::pair(i, j);
       layout.blocks.push_back({V2(x0, y0),
                                V2(x_edge(i1, high.x()), y_edge(j1, high.y())),
                                inner,
-                               {i >= 0, i1 < style.nx, j >= 0, j1 < style.ny}});
+                               {i >= 0, i1 < style.nx, j >= 0, j1 < style.ny},
+                               plaza ? 0 : -1});
     }
   return layout;
 }

@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flowscape/scenes/city.h"
@@ -26,7 +27,8 @@ struct Style {
   double hills;                   // amplitude of the terrain, metres
   double speed;                   // vehicles' wish speed, m/s
   bool roundabouts = false, highway = false, water = false, rails = false;
-  double tees = 0;  // share of the inner road segments left out, making T-junctions
+  double tees = 0;        // share of the inner road segments left out, making T-junctions
+  bool diagonal = false;  // a diagonal street across one block (a plaza)
 };
 const Style& style_of(int map);
 
@@ -44,6 +46,18 @@ struct Block {
   Eigen::Vector2d lo, hi;           // between the road edges (outer blocks reach the map's margin)
   bool inner;                       // roads on all four sides
   std::array<bool, 4> road_beside;  // a road along its side at lo.x, hi.x, lo.y, hi.y
+  int diagonal = -1;                // the diagonal street across it (a plaza), or -1
+};
+
+// A street from a junction to the one diagonally opposite across a block, one lane each way.
+struct Diagonal {
+  int from, to;  // nodes
+  Eigen::Vector2d start, direction;
+  double half_width;
+  // Signed distance of p from the centre line (positive on its left).
+  double offset(const Eigen::Vector2d& p) const {
+    return direction.x() * (p - start).y() - direction.y() * (p - start).x();
+  }
 };
 
 // A zebra crossing on an arm of a junction: the band of road between the junction's box and its
@@ -67,6 +81,8 @@ struct Layout {
   std::vector<Lane> lanes;
   std::vector<Block> blocks;
   std::vector<Crosswalk> crosswalks;
+  std::vector<Diagonal> diagonals;
+  std::pair<int, int> diagonal_cell{-1, -1};  // the cell (i, j) the diagonal crosses
   // Whether the road runs from node (i, j) to (i + 1, j), and from (i, j) to (i, j + 1).
   std::vector<char> x_open, y_open;
 

@@ -560,7 +560,66 @@ class WorldBuilder {
     });
   }
 
+  // A paved plaza with a diagonal street across it: the road, paving either side of it (the block
+  // cut by the road's band: two convex polygons), kerbs along the road and round the block where
+  // the road does not cross, and trees along the road.
+  void plaza(const Block& b, const Diagonal& d) {
+    const V2 normal(-d.direction.y(), d.direction.x());
+    const Paint road{C::Road, palette_.asphalt}, walk{C::SideWalk, palette_.pavement},
+        kerb{C::SideWalk, palette_.curb};
+    // the road from where it leaves one junction's box to where it enters the other's
+    const auto box_exit = [&](int node) {
+      const V2 half(layout_.half_width_y(node % layout_.nx()),
+                    layout_.half_width_x(node / layout_.nx()));
+      return std::min(half.x() / std::abs(d.direction.x()), half.y() / std::abs(d.direction.y()));
+    };
+    const V2 a = layout_.node_position(d.from), c = layout_.node_position(d.to);
+    const V2 from = a + d.direction * box_exit(d.from), to = c - d.direction * box_exit(d.to);
+    const int pieces = std::max(1, int(std::ceil((to - from).norm() / 6)));
+    for (int k = 0; k < pieces; ++k) {
+      const V2 p = from + (to - from) * double(k) / pieces,
+               q = from + (to - from) * double(k + 1) / pieces;
+      const V2 side = normal * d.half_width;
+      add_quad(mesh_, at(p - side, 0), at(q - side, 0), at(q + side, 0), at(p + side, 0), road,
+               {V3(a.x(), a.y(), 0), V3(d.direction.x(), d.direction.y(), 0),
+                V3(normal.x(), normal.y(), 0)});
+    }
+    const std::array<V2, 4> corners{b.lo, V2(b.hi.x(), b.lo.y()), b.hi, V2(b.lo.x(), b.hi.y())};
+    for (const double side : {-1.0, 1.0}) {
+      // the block's corners beyond the road's edge on this side, and where its edges meet that edge
+      std::vector<V2> paving;
+      for (int k = 0; k < 4; ++k) {
+        const V2 &p = corners[k], &q = corners[(k + 1) % 4];
+        const double fp = side * d.offset(p) - d.half_width, fq = side * d.offset(q) - d.half_width;
+        if (fp >= 0) paving.push_back(p);
+        if ((fp < 0) != (fq < 0)) paving.push_back(p + (q - p) * (fp / (fp - fq)));
+      }
+      for (std::size_t k = 1; k + 1 < paving.size(); ++k)
+        add_quad(mesh_, at(paving[0], kCurb), at(paving[k], kCurb), at(paving[k + 1], kCurb),
+                 at(paving[0], kCurb), walk);
+      // the kerb along the road: the chord of the paving polygon on the road's edge
+      std::vector<V2> edge;
+      for (const V2& p : paving)
+        if (std::abs(side * d.offset(p) - d.half_width) < 1e-9) edge.push_back(p);
+      if (edge.size() == 2) wall(edge[0], edge[1], 0, kCurb, kerb);
+      for (std::size_t k = 0; k < paving.size(); ++k) {  // and round the block
+        const V2 &p = paving[k], &q = paving[(k + 1) % paving.size()];
+        const bool on_road_edge = std::abs(side * d.offset(p) - d.half_width) < 1e-9 &&
+                                  std::abs(side * d.offset(q) - d.half_width) < 1e-9;
+        if (!on_road_edge) wall(p, q, 0, kCurb, kerb);
+      }
+      const double length = (c - a).norm();
+      for (double s = 12; s < length - 12; s += 15) {
+        const V2 spot = a + d.direction * s + normal * side * (d.half_width + 2.5);
+        if (spot.x() > b.lo.x() + 2 && spot.x() < b.hi.x() - 2 && spot.y() > b.lo.y() + 2 &&
+            spot.y() < b.hi.y() - 2)
+          tree(spot, kCurb);
+      }
+    }
+  }
+
   void block(const Block& b) {
+    if (b.diagonal >= 0) return plaza(b, layout_.diagonals[b.diagonal]);
     const Style& style = layout_.style;
     find_bend_squares(b);
     sidewalks(b);

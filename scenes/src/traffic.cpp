@@ -310,12 +310,15 @@ class Traffic {
   void choose_next(Vehicle& v) {
     const Lane& in = layout_.lanes[v.lane];
     const V2 in_direction = in.path.at(0).direction;
-    std::vector<int> roads;  // one lane per road leaving the junction (not back where it came from)
+    // one lane per road leaving the junction: not back where it came from, and no hairpin (a turn
+    // of more than about 107 degrees, from or onto the diagonal street) where there is another way
+    std::vector<int> roads, hairpins;
     for (int l : outgoing_[in.to]) {
       const Lane& out = layout_.lanes[l];
       if (out.to == in.from || out.index != 0) continue;
-      roads.push_back(l);
+      (out.path.at(0).direction.dot(in_direction) < -0.3 ? hairpins : roads).push_back(l);
     }
+    if (roads.empty()) roads = hairpins;
     std::vector<double> weights;
     for (int l : roads)
       weights.push_back(layout_.lanes[l].path.at(0).direction.dot(in_direction) > 0.5 ? 2 : 1);

@@ -56,16 +56,16 @@ std::vector<SidewalkLoop> sidewalk_loops(const Layout& layout) {
   std::vector<char> paired(layout.blocks.size(), 0);
   for (std::size_t a = 0; a < layout.blocks.size(); ++a) {
     const Block& low = layout.blocks[a];
-    if (!low.inner) continue;
+    if (!low.inner || low.diagonal >= 0) continue;  // nobody walks round a plaza
     loops.push_back(
         loop_around(layout, low.lo + V2::Constant(far), low.hi - V2::Constant(far), false));
     if (paired[a]) continue;
     // the block right above across one road, of the same width: one loop round both
     std::size_t b = a + 1;
     while (b < layout.blocks.size() &&
-           !(layout.blocks[b].inner && !paired[b] && layout.blocks[b].lo.x() == low.lo.x() &&
-             layout.blocks[b].hi.x() == low.hi.x() && layout.blocks[b].lo.y() > low.hi.y() &&
-             layout.blocks[b].lo.y() < low.hi.y() + 30))
+           !(layout.blocks[b].inner && layout.blocks[b].diagonal < 0 && !paired[b] &&
+             layout.blocks[b].lo.x() == low.lo.x() && layout.blocks[b].hi.x() == low.hi.x() &&
+             layout.blocks[b].lo.y() > low.hi.y() && layout.blocks[b].lo.y() < low.hi.y() + 30))
       ++b;
     if (b == layout.blocks.size()) {
       loops.push_back(

@@ -58,13 +58,17 @@ TEST_CASE("left-out segments make T-junctions, never dead ends, and blocks stay 
       }
       // lanes only where the road runs; every block's middle is block, its edges meet roads
       for (const Lane& lane : layout.lanes) {
+        if (!layout.diagonals.empty() &&
+            (lane.from == layout.diagonals[0].from || lane.from == layout.diagonals[0].to) &&
+            (lane.to == layout.diagonals[0].from || lane.to == layout.diagonals[0].to))
+          continue;  // the diagonal street's lanes
         const int i0 = lane.from % layout.nx(), j0 = lane.from / layout.nx(),
                   i1 = lane.to % layout.nx(), j1 = lane.to / layout.nx();
         CHECK((j0 == j1 ? layout.x_segment(std::min(i0, i1), j0)
                         : layout.y_segment(i0, std::min(j0, j1))));
       }
       for (const Block& block : layout.blocks) {
-        CHECK(layout.area((block.lo + block.hi) / 2) != Area::Road);
+        if (block.diagonal < 0) CHECK(layout.area((block.lo + block.hi) / 2) != Area::Road);
         if (!block.inner) continue;
         const V2 middle_of_bottom((block.lo.x() + block.hi.x()) / 2, block.lo.y() - 0.5);
         const Area below = layout.area(middle_of_bottom);  // a road runs along every side (where
@@ -73,4 +77,40 @@ TEST_CASE("left-out segments make T-junctions, never dead ends, and blocks stay 
       }
     }
   CHECK(left_out >= 16);  // at least one per map and seed on average
+}
+
+TEST_CASE("a diagonal street crosses one block on four maps: road along it, paving beside") {
+  for (int map = 0; map < kMapCount; ++map)
+    for (std::uint64_t seed = 0; seed < 3; ++seed) {
+      const Layout layout = make_layout(map, seed);
+      const bool expected = map == 0 || map == 1 || map == 5 || map == 7;
+      INFO("map " << map << " seed " << seed);
+      REQUIRE(layout.diagonals.size() == (expected ? 1u : 0u));
+      if (!expected) continue;
+      const Diagonal& d = layout.diagonals[0];
+      const V2 a = layout.node_position(d.from), b = layout.node_position(d.to);
+      // from a junction to the one diagonally opposite: both coordinates change
+      CHECK(std::abs(a.x() - b.x()) > 50);
+      CHECK(std::abs(a.y() - b.y()) > 50);
+      int lanes = 0, plazas = 0;
+      for (const Lane& lane : layout.lanes)
+        if ((lane.from == d.from && lane.to == d.to) || (lane.from == d.to && lane.to == d.from)) {
+          ++lanes;
+          const V2 direction = lane.path.at(0).direction;
+          CHECK(std::abs(direction.x()) > 0.3);
+          CHECK(std::abs(direction.y()) > 0.3);
+        }
+      CHECK(lanes == 2);  // one each way
+      for (const Block& block : layout.blocks) {
+        if (block.diagonal < 0) continue;
+        ++plazas;
+        const V2 middle = (block.lo + block.hi) / 2,
+                 across = V2(-(b - a).y(), (b - a).x()).normalized();
+        CHECK(layout.area(middle) == Area::Road);  // the line joining the two junctions
+        CHECK(layout.area(middle + (d.half_width - 0.05) * across) == Area::Road);
+        CHECK(layout.area(middle + (d.half_width + 0.05) * across) == Area::SideWalk);
+        CHECK(layout.area(middle - (d.half_width + 0.05) * across) == Area::SideWalk);
+      }
+      CHECK(plazas == 1);
+    }
 }
