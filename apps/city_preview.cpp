@@ -23,7 +23,7 @@ namespace {
 
 struct Options {
   std::string out = "city_maps.png", gltf_dir;
-  int height = 160, vehicles = 60, pedestrians = 60, ego_start = 37;
+  int height = 160, vehicles = 120, pedestrians = 80, ego_start = 37;
   ReleaseConfig color;  // spp, indirect_spp, denoise: as a release renders colour
   std::uint64_t seed = 0;
   double time = 1.0;

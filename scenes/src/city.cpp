@@ -68,12 +68,13 @@ int random_lane(const Layout& layout, Random& random) {
   return int(layout.lanes.size()) - 1;
 }
 
-// Traffic where the camera sees it: a spot farther than `near` from the ego's start is taken only
-// one time in twenty (after 100 tries, any spot), so most actors live around the ego's route
-// (bench_actor_share measures what the camera then sees).
+// Traffic where the camera sees it: a spot is taken if it lies within `near` of the ego's start,
+// a metre farther with every try that failed (where the roads near the ego are full, the next
+// ring fills), or one time in 500 anywhere (after 100 tries, any spot); so most actors live
+// around the ego's route (bench_actor_share measures what the camera then sees).
 bool near_the_ego(const Eigen::Vector2d& spot, const Eigen::Vector2d& ego, double near, int attempt,
                   Random& random) {
-  return (spot - ego).norm() < near || attempt >= 100 || random.uniform(0, 1) < 0.05;
+  return (spot - ego).norm() < near + attempt || attempt >= 100 || random.uniform(0, 1) < 0.002;
 }
 
 struct Spawned {

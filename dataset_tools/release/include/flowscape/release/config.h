@@ -22,7 +22,7 @@ struct ReleaseConfig {
   // Weather presets, cycled over the sequences of a map (FlowScape: 5 sunny, cloud, fog, rain).
   std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
                                     "sunny", "cloud", "fog",   "rain"};
-  int vehicles = 100, pedestrians = 60;
+  int vehicles = 120, pedestrians = 80;
   // User models replacing the built-in ones, by actor kind (car, truck, bus, bike, pedestrian):
   // glTF through tinygltf, OBJ/FBX/... through assimp, with their textures.
   std::map<std::string, std::string> models;

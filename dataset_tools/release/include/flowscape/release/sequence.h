@@ -17,7 +17,7 @@ struct SequenceSpec {
   int map = 0;
   std::string weather = "sunny";  // a preset name
   std::uint64_t seed = 0;         // the city, traffic, weather variant and colour noise
-  int vehicles = 100, pedestrians = 60;
+  int vehicles = 120, pedestrians = 80;
   int ego_start = 0;  // index into City::start_points
   int frames = 100;
   std::map<std::string, std::string> models;  // ReleaseConfig::models
