@@ -137,15 +137,17 @@ PathPoint Path::at(double s) const {
 }
 
 Path rounded_polyline(const std::vector<V2>& corners, double radius, bool closed) {
-  return rounded_polyline(corners, std::vector<double>(corners.size(), radius), closed, true);
+  return rounded_polyline(corners, std::vector<double>(corners.size(), radius), closed,
+                          std::vector<bool>(corners.size(), true));
 }
 
 Path rounded_polyline(const std::vector<V2>& corners, const std::vector<double>& radii, bool closed,
-                      bool transitions) {
+                      const std::vector<bool>& transitions) {
   const int n = int(corners.size());
   struct Corner {
     V2 start;  // where the curve leaves the straight line
     double heading, turn, radius;
+    bool transitions;
   };
   std::vector<Corner> rounded;
   for (int k = closed ? 0 : 1; k < (closed ? n : n - 1); ++k) {
@@ -158,10 +160,10 @@ Path rounded_polyline(const std::vector<V2>& corners, const std::vector<double>&
     const auto share = [&](int end) { return !closed && (end == 0 || end == n - 1) ? 1.0 : 0.5; };
     const double room =
         std::min((here - prev).norm() * share(k - 1), (next - here).norm() * share(k + 1));
-    const double tangent = tangent_length(turn, radii[k], transitions);
+    const double tangent = tangent_length(turn, radii[k], transitions[k]);
     const double fit = std::min(1.0, room / tangent);
-    rounded.push_back(
-        {here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn, fit * radii[k]});
+    rounded.push_back({here - fit * tangent * d_in, std::atan2(d_in.y(), d_in.x()), turn,
+                       fit * radii[k], transitions[k]});
   }
   Path path;
   const V2 first = closed && !rounded.empty() ? rounded.front().start : corners.front();
@@ -169,7 +171,7 @@ Path rounded_polyline(const std::vector<V2>& corners, const std::vector<double>&
   for (const Corner& c : rounded) {
     path.line_to(c.start);
     if (path.length() == 0) path.start_at(first, c.heading);
-    append_corner(path, c.turn, c.radius, transitions);
+    append_corner(path, c.turn, c.radius, c.transitions);
   }
   path.line_to(closed ? first : corners.back());
   return path;

@@ -46,9 +46,9 @@ class Path {
 // transitions (each a quarter of the turn; the whole corner shrunk where a side is short: it may
 // take half of a side between two corners, all of a first or last side).
 Path rounded_polyline(const std::vector<Eigen::Vector2d>& corners, double radius, bool closed);
-// The same with a radius per corner, and optionally plain circular arcs (no transitions).
+// The same with a radius per corner, each with transitions or a plain circular arc.
 Path rounded_polyline(const std::vector<Eigen::Vector2d>& corners, const std::vector<double>& radii,
-                      bool closed, bool transitions);
+                      bool closed, const std::vector<bool>& transitions);
 // From `a` heading `da` to `b` heading `db` (perpendicular or parallel): straight, or two lines
 // meeting at a corner rounded with `radius`.
 Path turn_path(const Eigen::Vector2d& a, const Eigen::Vector2d& da, const Eigen::Vector2d& b,

@@ -18,16 +18,18 @@ double SidewalkLoop::lift(double s) const {
 
 namespace {
 
-// A walking loop round the rectangle lo..hi: corners of 0.5 m, but round a bend on a circle about
-// the bend's centre (concentric with its kerb, so it stays on the curved sidewalk).
+// A walking loop round the rectangle lo..hi: corners of 0.5 m with transitions, but round a bend
+// a plain circle about the bend's centre (concentric with its kerb: it stays on the curved
+// sidewalk).
 SidewalkLoop loop_around(const Layout& layout, const V2& lo, const V2& hi, bool counter_clockwise) {
   std::vector<V2> corners{lo, V2(hi.x(), lo.y()), hi, V2(lo.x(), hi.y())};
   if (!counter_clockwise) std::reverse(corners.begin(), corners.end());
   std::vector<double> radii(corners.size(), 0.5);
+  std::vector<bool> transitions(corners.size(), true);
   for (std::size_t k = 0; k < corners.size(); ++k)
     if (const int bend = layout.bend_at(corners[k]); bend >= 0)
-      radii[k] = std::abs((layout.bend_centre(bend) - corners[k]).x());
-  return {rounded_polyline(corners, radii, true, false), {}};
+      radii[k] = std::abs((layout.bend_centre(bend) - corners[k]).x()), transitions[k] = false;
+  return {rounded_polyline(corners, radii, true, transitions), {}};
 }
 
 // The stretches of `loop` between the two blocks' facing edges (on the road between them), on
