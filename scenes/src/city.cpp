@@ -172,12 +172,7 @@ void park_cars(const Layout& layout, const std::map<ActorKind, Mesh>& models, st
       const PathPoint p = lane.path.at(s);
       const Eigen::Vector2d right(p.direction.y(), -p.direction.x()),
           at = p.position + kerb * right;
-      const double pitch =
-          std::atan2(layout.height(at + p.direction) - layout.height(at - p.direction), 2.0);
-      const Pose pose(Eigen::Translation3d(at.x(), at.y(), layout.height(at)) *
-                      Eigen::AngleAxisd(std::atan2(p.direction.y(), p.direction.x()),
-                                        Eigen::Vector3d::UnitZ()) *
-                      Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
+      const Pose pose = ground_pose(layout, {at, p.direction, 0}, 0);
       add_parked_vehicle(ActorKind::Car, pose, model == models.end() ? nullptr : &model->second,
                          random, city.scene);
       const Eigen::Vector2d along = p.direction * car.length / 2, side = right * car.width / 2;

@@ -239,26 +239,29 @@ Area Layout::area(const V2& p) const {
   if (const std::optional<Area> bend = bend_area(p)) return *bend;
   double to_road = 1e9;  // distance from p to the nearest road edge
   bool on_x_road = false, on_y_road = false;
+  // a road segment from `from` to `to` along one axis (junction boxes included), centred on
+  // `line` across it: p (at `along`, `across`) is on it or `to_road` from its edge
+  const auto segment = [&](double along, double across, double from, double to, double line,
+                           double half, bool& on) {
+    if (along < from || along > to) return;
+    const double d = std::abs(across - line) - half;
+    on |= d <= 0, to_road = std::min(to_road, d);
+  };
   for (int j = 0; j < ny(); ++j)
     for (int i = 0; i + 1 < nx(); ++i)
-      if (x_segment(i, j) && p.x() >= xs[i] - half_width_y(i) &&
-          p.x() <= xs[i + 1] + half_width_y(i + 1)) {
-        const double d = std::abs(p.y() - ys[j]) - half_width_x(j);
-        on_x_road |= d <= 0, to_road = std::min(to_road, d);
-      }
+      if (x_segment(i, j))
+        segment(p.x(), p.y(), xs[i] - half_width_y(i), xs[i + 1] + half_width_y(i + 1), ys[j],
+                half_width_x(j), on_x_road);
   for (int i = 0; i < nx(); ++i)
     for (int j = 0; j + 1 < ny(); ++j)
-      if (y_segment(i, j) && p.y() >= ys[j] - half_width_x(j) &&
-          p.y() <= ys[j + 1] + half_width_x(j + 1)) {
-        const double d = std::abs(p.x() - xs[i]) - half_width_y(i);
-        on_y_road |= d <= 0, to_road = std::min(to_road, d);
-      }
+      if (y_segment(i, j))
+        segment(p.y(), p.x(), ys[j] - half_width_x(j), ys[j + 1] + half_width_x(j + 1), xs[i],
+                half_width_y(i), on_y_road);
   if (on_x_road && on_y_road) return Area::Junction;
   for (const Crosswalk& c : crosswalks)
-    if (c.contains(p)) return Area::Crossing;
+    if (c.band.contains(p)) return Area::Crossing;
   for (const Block& block : blocks)  // a plaza: the diagonal street, paving either side
-    if (block.diagonal >= 0 && p.x() >= block.lo.x() && p.y() >= block.lo.y() &&
-        p.x() <= block.hi.x() && p.y() <= block.hi.y()) {
+    if (block.diagonal >= 0 && Rect{block.lo, block.hi}.contains(p)) {
       const Diagonal& d = diagonals[block.diagonal];
       return std::abs(d.offset(p)) <= d.half_width ? Area::Road : Area::SideWalk;
     }
@@ -315,7 +318,7 @@ Layout make_layout(int map, std::uint64_t seed) {
       const bool across_x = arm < 2;  // arms 0 and 1 run along x
       const V2 a = across_x ? centre + V2(side * hx, -hy) : centre + V2(-hx, side * hy);
       const V2 b = across_x ? centre + V2(side * reach.x(), hy) : centre + V2(hx, side * reach.y());
-      layout.crosswalks.push_back({n, across_x, a.cwiseMin(b), a.cwiseMax(b)});
+      layout.crosswalks.push_back({n, across_x, {a.cwiseMin(b), a.cwiseMax(b)}});
     }
   const V2 low = layout.lo(), high = layout.hi();
   const auto x_edge = [&](int i, double outside) {  // the road edge left of road line i

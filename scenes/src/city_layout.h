@@ -60,16 +60,24 @@ struct Diagonal {
   }
 };
 
-// A zebra crossing on an arm of a junction: the band of road between the junction's box and its
-// stop lines, across the arm.
-struct Crosswalk {
-  int node;
-  bool across_x_road;  // on an arm along x (pedestrians walk along y)
+// An axis-aligned rectangle of the ground.
+struct Rect {
   Eigen::Vector2d lo, hi;
   bool contains(const Eigen::Vector2d& p, double margin = 0) const {
     return p.x() >= lo.x() - margin && p.y() >= lo.y() - margin && p.x() <= hi.x() + margin &&
            p.y() <= hi.y() + margin;
   }
+  bool meets(const Rect& o) const {  // their insides overlap
+    return lo.x() < o.hi.x() && hi.x() > o.lo.x() && lo.y() < o.hi.y() && hi.y() > o.lo.y();
+  }
+};
+
+// A zebra crossing on an arm of a junction: the band of road between the junction's box and its
+// stop lines, across the arm.
+struct Crosswalk {
+  int node;
+  bool across_x_road;  // on an arm along x (pedestrians walk along y)
+  Rect band;
 };
 
 struct Layout {

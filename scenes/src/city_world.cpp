@@ -56,13 +56,6 @@ struct Dress {
 
 constexpr double kFacadeDepth = 0.3;  // the most that frames, sills, ledges and cornices stand out
 
-struct Rect {
-  V2 lo, hi;
-  bool meets(const Rect& o) const {
-    return lo.x() < o.hi.x() && hi.x() > o.lo.x() && lo.y() < o.hi.y() && hi.y() > o.lo.y();
-  }
-};
-
 // `r` less `cut`, a box over one of its corners: two rectangles (one where `cut` does not meet it).
 std::vector<Rect> minus_corner(const Rect& r, const Rect& cut) {
   if (!r.meets(cut)) return {r};
@@ -161,10 +154,10 @@ class WorldBuilder {
       for (int i = 0, end = 0; i + 1 < layout_.nx(); i = std::max(i + 1, end)) {
         for (end = i; end + 1 < layout_.nx() && layout_.x_segment(end, j);) ++end;
         if (end == i) continue;
-        const double x0 =
-            bend(i, j) ? layout_.xs[i] + cut(i, j) : layout_.xs[i] - layout_.half_width_y(i);
-        const double x1 = bend(end, j) ? layout_.xs[end] - cut(end, j)
-                                       : layout_.xs[end] + layout_.half_width_y(end);
+        const double x0 = is_bend(i, j) ? layout_.xs[i] + bend_cut(i, j)
+                                        : layout_.xs[i] - layout_.half_width_y(i);
+        const double x1 = is_bend(end, j) ? layout_.xs[end] - bend_cut(end, j)
+                                          : layout_.xs[end] + layout_.half_width_y(end);
         patch(V2(x0, layout_.ys[j] - layout_.half_width_x(j)),
               V2(x1, layout_.ys[j] + layout_.half_width_x(j)), 0, road, 4,
               {V3(0, layout_.ys[j], 0), V3::UnitX(), V3::UnitY()});
@@ -173,10 +166,10 @@ class WorldBuilder {
       for (int j = 0; j + 1 < layout_.ny(); ++j)
         if (layout_.y_segment(i, j))
           patch(V2(layout_.xs[i] - layout_.half_width_y(i),
-                   layout_.ys[j] + (bend(i, j) ? cut(i, j) : layout_.half_width_x(j))),
+                   layout_.ys[j] + (is_bend(i, j) ? bend_cut(i, j) : layout_.half_width_x(j))),
                 V2(layout_.xs[i] + layout_.half_width_y(i),
                    layout_.ys[j + 1] -
-                       (bend(i, j + 1) ? cut(i, j + 1) : layout_.half_width_x(j + 1))),
+                       (is_bend(i, j + 1) ? bend_cut(i, j + 1) : layout_.half_width_x(j + 1))),
                 0, road, 4, {V3(layout_.xs[i], 0, 0), V3::UnitY(), -V3::UnitX()});
     margin_ends();
     for (const Lane& lane : layout_.lanes) markings(lane);
@@ -254,8 +247,8 @@ class WorldBuilder {
           b.position - a.direction * 0.3 + left * (kLaneWidth / 2), 0.4, 0.02, white);
   }
 
-  bool bend(int i, int j) const { return layout_.is_bend(layout_.node(i, j)); }
-  double cut(int i, int j) const { return layout_.bend_cut(layout_.node(i, j)); }
+  bool is_bend(int i, int j) const { return layout_.is_bend(layout_.node(i, j)); }
+  double bend_cut(int i, int j) const { return layout_.bend_cut(layout_.node(i, j)); }
 
   // The road round a bend: straight from where the lanes stop to the circle's tangent points, a
   // quarter annulus between them; its centre and lane lines; a kerb, a curved sidewalk and ground
@@ -284,7 +277,7 @@ class WorldBuilder {
     const auto band = [&](double off0, double off1, double lift, Paint paint, bool uv) {
       for (int k = 0; k < steps; ++k) {
         const auto [a, da] = along(double(k) / steps, off0);
-        const auto [b, db] = along(double(k + 1) / steps, off0);
+        const V2 b = along(double(k + 1) / steps, off0).first;
         const V2 c = along(double(k + 1) / steps, off1).first,
                  d = along(double(k) / steps, off1).first;
         const V2 left(-da.y(), da.x());
@@ -429,13 +422,9 @@ class WorldBuilder {
         const Rect edge{from.cwiseMin(to), from.cwiseMax(to)};
         if (!Rect{edge.lo - V2::Constant(0.01), edge.hi + V2::Constant(0.01)}.meets(bend)) continue;
         const V2 along = (to - from).normalized();
-        const auto inside = [&](const V2& p) {
-          return p.x() >= bend.lo.x() - 0.01 && p.x() <= bend.hi.x() + 0.01 &&
-                 p.y() >= bend.lo.y() - 0.01 && p.y() <= bend.hi.y() + 0.01;
-        };
         const double extent = std::abs((bend.hi - bend.lo).dot(along));
-        if (inside(from)) from += along * extent;
-        if (inside(to)) to -= along * extent;
+        if (bend.contains(from, 0.01)) from += along * extent;
+        if (bend.contains(to, 0.01)) to -= along * extent;
       }
       wall(from, to, 0, kCurb, curb);
       const V2 along = (to - from).normalized();

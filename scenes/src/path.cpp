@@ -62,7 +62,7 @@ double tangent_length(double turn, double radius, bool transitions = true) {
 // clothoids of length `transition`, curvature 0 -> swing -> 1 / radius, the swing solved (by
 // bisection) so that the ring they end on is centred on the arm's axis.
 struct RingJoin {
-  double swing, transition;
+  double swing;
   V2 end;         // where the ring starts, relative to its centre
   double before;  // distance from the start of the clothoids to the centre, along the arm
 };
@@ -88,7 +88,7 @@ RingJoin ring_join(double offset, double radius, double transition) {
                            std::to_string(radius) + " m ring");
   for (int k = 0; k < 60; ++k) (centre_x((lo + hi) / 2) > 0 ? lo : hi) = (lo + hi) / 2;
   const V2 centre = ring_centre_of(offset, radius, lo, transition, &end);
-  return {lo, transition, end - centre, centre.y()};
+  return {lo, end - centre, centre.y()};
 }
 
 }  // namespace

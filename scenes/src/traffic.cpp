@@ -86,6 +86,8 @@ double largest_curvature(const Path& path) {
   return largest;
 }
 
+}  // namespace
+
 Pose ground_pose(const Layout& layout, const PathPoint& p, double lift) {
   const double ahead = layout.height(p.position + p.direction),
                behind = layout.height(p.position - p.direction);
@@ -95,6 +97,8 @@ Pose ground_pose(const Layout& layout, const PathPoint& p, double lift) {
   return Pose(Eigen::Translation3d(at) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
               Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
 }
+
+namespace {
 
 // The way across a junction from one lane to another.
 struct Connector {
@@ -133,6 +137,13 @@ bool on_lane(const Vehicle& v, int lane) {
 // its length driven: f' and f'' vanish at both ends, so heading and curvature stay continuous.
 double smootherstep(double u) { return u * u * u * (10 + u * (-15 + 6 * u)); }
 double smootherstep_slope(double u) { return 30 * u * u * (1 + u * (-2 + u)); }
+
+// How far a vehicle changing lanes moves sideways per metre along its lane, as a share of the
+// distance between the two lanes.
+double change_slope(const Vehicle& v) {
+  const double u = std::clamp((v.s - v.change_start) / v.change_length, 0.0, 1.0);
+  return smootherstep_slope(u) / v.change_length;
+}
 
 class Traffic {
  public:
@@ -211,7 +222,7 @@ class Traffic {
     const V2 away = layout_.lanes[v.change_from].path.at(v.s).position - p.position;
     const double u = std::clamp((v.s - v.change_start) / v.change_length, 0.0, 1.0);
     p.position += (1 - smootherstep(u)) * away;
-    p.direction = (p.direction - smootherstep_slope(u) / v.change_length * away).normalized();
+    p.direction = (p.direction - change_slope(v) * away).normalized();
     return p;
   }
 
@@ -226,11 +237,12 @@ class Traffic {
   std::pair<int, int> neighbours(int i, int lane) const {
     int ahead = -1, behind = -1;
     double ahead_s = kInf, behind_s = -kInf;
+    const double here = vehicles_[i].s;
     for (int k = 0; k < int(vehicles_.size()); ++k) {
-      const std::optional<double> s = position_on(vehicles_[k], lane);
-      if (k == i || !s) continue;
-      if (*s >= vehicles_[i].s && *s < ahead_s) ahead = k, ahead_s = *s;
-      if (*s<vehicles_[i].s&& * s> behind_s) behind = k, behind_s = *s;
+      const std::optional<double> there = position_on(vehicles_[k], lane);
+      if (k == i || !there) continue;
+      if (*there >= here && *there < ahead_s) ahead = k, ahead_s = *there;
+      if (*there<here&& * there> behind_s) behind = k, behind_s = *there;
     }
     return {ahead, behind};
   }
@@ -298,8 +310,9 @@ class Traffic {
         for (int k = 0; k < int(layout_.crosswalks.size()); ++k) {
           const Crosswalk& crosswalk = layout_.crosswalks[k];
           if (crosswalk.node == node_of(lane) &&
-              std::any_of(c.samples.begin(), c.samples.end(),
-                          [&](const V2& p) { return crosswalk.contains(p, kCrosswalkMargin); }))
+              std::any_of(c.samples.begin(), c.samples.end(), [&](const V2& p) {
+                return crosswalk.band.contains(p, kCrosswalkMargin);
+              }))
             c.crosswalks.push_back(k);
         }
         tightest_[node_of(lane)] = std::max(tightest_[node_of(lane)], c.curvature);
@@ -551,8 +564,7 @@ class Traffic {
     Vehicle& v = vehicles_[i];
     v.speed = speed, v.travelled += speed * kStep;
     if (v.change_from >= 0) {  // along the lane a little less than along the curve driven
-      const double u = (v.s - v.change_start) / v.change_length;
-      const double sideways = smootherstep_slope(u) / v.change_length * kLaneWidth;
+      const double sideways = change_slope(v) * kLaneWidth;
       v.s += speed * kStep / std::sqrt(1 + sideways * sideways);
       if (v.s >= v.change_start + v.change_length) v.change_from = -1;
     } else {

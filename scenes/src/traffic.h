@@ -33,6 +33,9 @@ struct WalkerStart {
   double s, speed;
 };
 
+// Standing at p on the ground `lift` above it, pitched with the ground's slope along p's direction.
+Pose ground_pose(const Layout& layout, const PathPoint& p, double lift);
+
 struct TrafficTracks {
   std::vector<Track> vehicles, walkers;  // in the order of their starts
 };

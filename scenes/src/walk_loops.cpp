@@ -46,7 +46,7 @@ void find_crossings(const Layout& layout, double road_lo, double road_hi, Sidewa
     while (on_road(end + ds)) end += ds;
     const V2 middle = loop.path.at((s + end) / 2).position;
     for (int k = 0; k < int(layout.crosswalks.size()); ++k)
-      if (layout.crosswalks[k].contains(middle)) loop.crossings.push_back({s, end, k});
+      if (layout.crosswalks[k].band.contains(middle)) loop.crossings.push_back({s, end, k});
   }
 }
 

@@ -67,6 +67,8 @@ bool overlap(const std::array<V2, 4>& a, const std::array<V2, 4>& b) {
   return true;
 }
 
+double yaw(const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); }
+
 CityConfig busy(int map) {
   CityConfig config;
   config.map = map, config.seed = 7, config.vehicles = 120, config.pedestrians = 80;
@@ -240,7 +242,6 @@ TEST_CASE("vehicles change lanes on multi-lane roads, sideways by exactly one la
   CityConfig config = busy(0);
   config.duration = 20;
   const City city = make_city(config);
-  const auto yaw = [](const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); };
   int changes = 0;
   for (std::size_t a = 0; a < city.scene.actors.size(); ++a) {
     if (city.actors[a].kind == ActorKind::Pedestrian) continue;
@@ -434,7 +435,6 @@ TEST_CASE("vehicles drive as a vehicle model allows: bounded acceleration, braki
   // rate changed by up to 3.4 rad/s per frame (polygonal arcs), then 1.76 (instant braking in
   // curves, kinks onto the roundabouts' octagons); now at most 0.08 (bench_motion). Measured from
   // the poses at 30 Hz, with the slack of finite differences.
-  const auto yaw = [](const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); };
   const auto ground = [](const Pose& p) { return Eigen::Vector2d(p.translation().head<2>()); };
   for (int map = 0; map < kMapCount; ++map)
     for (const std::uint64_t seed : {7, 2}) {
