@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
       if (only.empty() || std::find(only.begin(), only.end(), s.name) != only.end())
         sequences.push_back(s);
     if (sequences.empty()) throw FileError(release, "no such sequences");
+    remove_temporary_files(out);
     Progress progress("flowscape_preview", sequences.size(), "sequences");
     for (const SequenceInfo& s : sequences) {
       const fs::path dir = sequence_dir(release, s.name);

@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "flowscape/core/files.h"
+#include "flowscape/release/manifest.h"
 #include "flowscape/release/writer.h"
 
 using namespace flowscape;
@@ -95,7 +96,10 @@ int main(int argc, char** argv) {
   app.add_flag("--force", force,
                "the folder holds a release made with another config: delete its files "
                "(sequences/, manifests, card, config.json, manifest.json) and start over");
-  app.add_flag("--check", check, "only check the options and print the plan; write nothing");
+  app.add_flag("--check", check,
+               "only check the options and print the plan, and report what the --out folder holds "
+               "that the release should not (temporary files, foreign files, files missing or "
+               "changed since manifest.json); write nothing");
   finish_options(app, "gen_flowscape");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -111,7 +115,14 @@ int main(int argc, char** argv) {
     if (check) {
       std::printf("%zu sequences of %d frames; shard %d/%d makes %zu of them\n",
                   plan_sequences(c).size(), c.frames, c.shard, c.shards, shard_plans(c).size());
-      return 0;
+      const std::vector<ReleaseProblem> problems = release_problems(out, c);
+      for (const ReleaseProblem& p : problems)
+        std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", p.path.c_str(), p.problem.c_str());
+      if (problems.empty()) return 0;
+      std::fprintf(diagnostics(),
+                   "gen_flowscape: error: %s: %zu file(s) not as the release has them\n",
+                   out.c_str(), problems.size());
+      return 1;
     }
     const ReleaseWritten written = write_release(c, out, force);
     std::printf("%s: %zu sequences, %zu frames, %zu files\n", written.manifest.c_str(),

@@ -3,7 +3,7 @@
 # Sanitizer in build-fuzz/, then runs each on one core for SECONDS (default 10) over its seed corpus
 # (tests/fuzz/corpus/<target>; what it learns goes to build-fuzz/corpus/<target>), and prints
 # executions and coverage. A crash, leak, UB, timeout or memory blow-up fails with the input saved
-# in build-fuzz/findings/.
+# in build-fuzz/findings/. Everything it writes stays under build-fuzz/ (or $FLOWSCAPE_FUZZ_BUILD).
 #   scripts/fuzz.sh                 every target, 10 s each (what the test suite runs)
 #   scripts/fuzz.sh 600 flo exr     the 10-minute runs of chosen targets
 set -euo pipefail
@@ -15,11 +15,12 @@ targets=("$@")
 build=${FLOWSCAPE_FUZZ_BUILD:-build-fuzz}
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 if [ ! -f "$build/CMakeCache.txt" ]; then
+  mkdir -p "$build"
   cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
     -DCMAKE_CXX_COMPILER=clang++ -DFLOWSCAPE_FUZZ=ON -DBUILD_TESTING=OFF \
     -DCMAKE_CXX_FLAGS="$sanitize -fsanitize=fuzzer-no-link" \
-    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" >"$build.configure.log" ||
-    { cat "$build.configure.log"; exit 1; }
+    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" >"$build/configure.log" ||
+    { cat "$build/configure.log"; exit 1; }
 fi
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]/#/fuzz_}" >"$build/build.log" 2>&1 ||
   { tail -30 "$build/build.log"; exit 1; }

@@ -74,6 +74,13 @@ check "stitch_erp: rerun with room" "$bin/stitch_erp" "$cube" -o "$work/st" --he
 check "stitch_erp: resumed = clean" bash -c "'$bin/stitch_erp' '$cube' -o '$work/st2' --height 16 && diff -r '$work/st' '$work/st2'"
 check "gt_quality --error-images on a full disk" \
   fails_clearly "No space left on device" on_full_disk 500 "$bin/gt_quality" -q "$work/clean" --error-images "$work/errors"
+cp -r "$cube" "$work/oddcube"
+for face in front right back left up down; do
+  oiiotool "$work/oddcube/$face/instance/000000.png" --resize 4x4 -o "$work/oddcube/$face/instance/000000.png"
+done
+check "stitch_erp: an instance image of another size names its file" \
+  fails_clearly "oddcube/front/instance/000000.png: cube face is 4x4, the cube's other files have 8x8 faces" \
+  "$bin/stitch_erp" "$work/oddcube" -o "$work/odd" --height 16
 mkdir -p "$work/emptycube"
 check "stitch_erp of an empty cubemap folder" \
   fails_clearly "emptycube: no cubemap frames found" "$bin/stitch_erp" "$work/emptycube" -o "$work/x"

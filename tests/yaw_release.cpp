@@ -7,6 +7,7 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/release/dataset_card.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
@@ -43,15 +44,19 @@ int main(int argc, char** argv) {
   write_image(file("color", 1), linear_to_srgb8(renderer.color(erp, next, {4, 2, 2}).view()));
   write_flo(file("flow", 0), gt.flow.view());
   write_image(file("valid", 0), gt.valid);
-  write_image(file("semantic", 0), gt.semantic);
-  write_image(file("semantic", 1), gt_next.semantic);
+  for (const auto& [frame, truth] : {std::pair{0, &gt}, {1, &gt_next}}) {
+    write_image(file("semantic", frame), truth->semantic);
+    write_image(file("instance", frame), truth->instance);
+    write_image(file("depth", frame), truth->depth);
+  }
   SequenceMeta meta;
   meta.scene = plan.name, meta.map_name = "yaw", meta.weather = {{"preset", "sunny"}};
   meta.frames = 2, meta.erp_height = config.height, meta.poses = {frames.rig, frames.next_rig};
   write_meta(seq, meta);
   for (const char* side : {"train", "test"})
     write_text(split_file(out, side), plan.name + " " + frame_name(0) + "\n");
-  write_manifest(out, config, file_hashes(out, {plan}));
+  write_dataset_card(out, config);
+  write_manifest(out, config, file_hashes(out, config, {plan}));
   std::printf("%s\n", out.c_str());
   return 0;
 }

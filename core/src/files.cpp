@@ -120,13 +120,53 @@ std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
   return bytes;
 }
 
-void remove_temporary_files(const fs::path& dir) {
-  if (!fs::exists(dir)) return;
-  std::vector<fs::path> found;  // removing while iterating would upset the iterator
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.is_regular_file() && entry.path().filename().string().starts_with(kTemporaryPrefix))
-      found.push_back(entry.path());
+namespace {
+
+// The name a temporary (".partial-<digits>-<name>") stands for; empty for other names.
+std::string target_name(const fs::path& path) {
+  const std::string name = path.filename().string();
+  const std::size_t digits = std::string_view(kTemporaryPrefix).size();
+  if (!name.starts_with(kTemporaryPrefix)) return "";
+  const std::size_t dash = name.find_first_not_of("0123456789", digits);
+  if (dash == std::string::npos || dash == digits || name[dash] != '-') return "";
+  return name.substr(dash + 1);
+}
+
+}  // namespace
+
+bool is_temporary_file(const fs::path& path) { return !target_name(path).empty(); }
+
+namespace {
+
+// Removes the regular files `entries` yields that `doomed` picks; collected first, since removing
+// while iterating would upset the iterator.
+template <class Iterator, class Predicate>
+std::size_t remove_files(Iterator entries, Predicate doomed) {
+  std::vector<fs::path> found;
+  for (const auto& entry : entries)
+    if (entry.is_regular_file() && doomed(entry.path())) found.push_back(entry.path());
   for (const auto& path : found) fs::remove(path);
+  return found.size();
+}
+
+}  // namespace
+
+std::size_t remove_temporary_files(const fs::path& dir) {
+  if (!fs::is_directory(dir)) return 0;
+  return remove_files(fs::directory_iterator(dir), is_temporary_file);
+}
+
+std::size_t remove_temporary_files_under(const fs::path& dir) {
+  if (!fs::is_directory(dir)) return 0;
+  return remove_files(fs::recursive_directory_iterator(dir), is_temporary_file);
+}
+
+std::size_t remove_temporaries_of(const fs::path& path) {
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir) || path.filename().empty()) return 0;
+  return remove_files(fs::directory_iterator(dir), [&](const fs::path& file) {
+    return target_name(file) == path.filename().string();
+  });
 }
 
 }  // namespace flowscape

@@ -29,8 +29,12 @@ done
 [[ -n $out ]] || { echo "submit.sh: --out DIR is required" >&2; exit 2; }
 bin=$(cd "$bin" && pwd) || { echo "submit.sh: no such folder $bin" >&2; exit 2; }
 [[ -x $bin/gen_flowscape ]] || { echo "submit.sh: $bin/gen_flowscape not found (build first)" >&2; exit 2; }
-# a typo in the options fails here, not in N array tasks
-"$bin/gen_flowscape" "$@" --out "$out" --shard "0/$shards" --check >/dev/null
+# a typo in the options fails here, not in N array tasks (checked against an empty folder: what
+# killed tasks left in $out is for their reruns to clean, not a reason to refuse)
+blank=$(mktemp -d)
+"$bin/gen_flowscape" "$@" --out "$blank/release" --shard "0/$shards" --check >/dev/null ||
+  { rmdir "$blank"; exit 2; }
+rmdir "$blank"
 mkdir -p "$out" "${logs:=$out-slurm-logs}"
 out=$(cd "$out" && pwd) logs=$(cd "$logs" && pwd)
 array=${only:-0-$((shards - 1))}

@@ -82,8 +82,63 @@ TEST_CASE("merge names what is missing or made otherwise") {
   edited["config"]["spp"] = 2;
   write_text(shard1, edited.dump());
   CHECK_THROWS_WITH(merge_shards(dir.path, false),
-                    Catch::Contains("shard-1-of-2.json: made with another config or shard count "
-                                    "than shard-0-of-2.json"));
+                    Catch::Contains("shard-1-of-2.json: made with another config than "
+                                    "shard-0-of-2.json (spp: 1 there, 2 here)"));
+}
+
+TEST_CASE("merge names the config keys of a shard that was refused") {
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(2, 2);
+  make_shard(config, 0, 2, dir.path);
+  ReleaseConfig other = config;
+  other.spp = 2, other.seed = 9, other.shard = 1, other.shards = 2;
+  CHECK_THROWS(write_release(other, dir.path));
+  CHECK_THROWS_WITH(merge_shards(dir.path, false),
+                    Catch::Contains("manifests: no manifest from shard(s) 1 of 2: rerun them; "
+                                    "shard 1 was refused: its config differs (seed: 11 in "
+                                    "shard-0-of-2.json, 9 in shard 1; spp: 1 in "
+                                    "shard-0-of-2.json, 2 in shard 1)"));
+  make_shard(config, 1, 2, dir.path);  // rerun with the release's config: the refusal is gone
+  CHECK_FALSE(fs::exists(dir.path / "manifests" / "refused-shard-1-of-2.json"));
+  CHECK_NOTHROW(merge_shards(dir.path, true));
+}
+
+TEST_CASE("the manifest lists the layout's files only; --check and merge name the others") {
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(2, 2);
+  make_shard(config, 0, 2, dir.path);
+  make_shard(config, 1, 2, dir.path);
+  const fs::path seq = sequence_dir(dir.path, "map00_seq01");
+  const fs::path stray = seq / "erp" / "color" / "notes.txt";
+  const fs::path stale = seq / "cube" / "up" / "depth" / ".partial-31337-000001.exr";
+  write_text(stray, "a user's file");
+  write_text(stale, "half");
+  const fs::path stale_shard = dir.path / "manifests" / ".partial-8-shard-0-of-2.json";
+  write_text(stale_shard, "{");
+  ReleaseConfig whole = config;
+  whole.shards = 1;
+  std::vector<ReleaseProblem> problems = release_problems(dir.path, whole);
+  REQUIRE(problems.size() == 3);
+  CHECK(
+      (problems[0].path == stale_shard && problems[1].path == stale && problems[2].path == stray));
+  CHECK(problems[0].problem == "temporary file of an interrupted run");
+  CHECK(problems[2].problem == "not part of the release");
+  CHECK_THROWS_WITH(merge_shards(dir.path, true),
+                    Catch::Contains("notes.txt: not part of the release"));
+  fs::remove(stray);
+  merge_shards(dir.path, true);
+  CHECK_FALSE(fs::exists(stale));
+  const nlohmann::json manifest = read_json(dir.path / "manifest.json");
+  for (const auto& [name, entry] : manifest["files"].items()) CHECK_FALSE(is_temporary_file(name));
+  CHECK(release_problems(dir.path, whole).empty());
+  write_text(dir.path / "card" / ".partial-3-sunny.png", "half");
+  fs::resize_file(seq / kMetaFile, 3);
+  fs::remove(seq / frame_file(output_kind("flow"), std::nullopt, 0));
+  problems = release_problems(dir.path, whole);
+  REQUIRE(problems.size() == 3);
+  CHECK(problems[0].problem == "temporary file of an interrupted run");
+  CHECK(problems[1].problem == "listed in manifest.json but missing");
+  CHECK(problems[2].problem == "size differs from manifest.json");
 }
 
 TEST_CASE("hostile shard manifests are refused with the file named") {

@@ -108,10 +108,10 @@ TEST_CASE("a rerun skips finished frames and redoes a damaged one to the same by
   const Counts again = write(config, dir.path);
   CHECK((again.done == 0 && again.skipped == 3));
   fs::remove(lost);
-  std::ofstream(seq / "erp" / "flow" / ".partial-000001.flo") << "half";  // a killed run's
+  std::ofstream(seq / "erp" / "flow" / ".partial-4242-000001.flo") << "half";  // a killed run's
   const Counts redo = write(config, dir.path);
   CHECK((redo.done == 1 && redo.skipped == 2));
   CHECK(file_bytes(lost) == lost_bytes);
   CHECK(file_bytes(kept) == kept_bytes);
-  CHECK_FALSE(fs::exists(seq / "erp" / "flow" / ".partial-000001.flo"));
+  CHECK_FALSE(fs::exists(seq / "erp" / "flow" / ".partial-4242-000001.flo"));
 }

@@ -65,6 +65,22 @@ void validate(const ReleaseConfig& c) {
                                                                    std::to_string(c.shards) + ")");
 }
 
+std::string config_differences(const nlohmann::json& first, const std::string& first_name,
+                               const nlohmann::json& second, const std::string& second_name) {
+  std::string text;
+  const auto add = [&](const std::string& key, const std::string& difference) {
+    text += (text.empty() ? "" : "; ") + key + ": " + difference;
+  };
+  for (const auto& [key, value] : second.items()) {
+    const nlohmann::json before = first.value(key, nlohmann::json());
+    if (before != value)
+      add(key, before.dump() + " " + first_name + ", " + value.dump() + " " + second_name);
+  }
+  for (const auto& [key, value] : first.items())
+    if (!second.contains(key)) add(key, "unknown " + second_name);
+  return text;
+}
+
 nlohmann::json to_json(const ReleaseConfig& c) {
   nlohmann::json j = nlohmann::json::object();
   for_each_field(c, [&](const char* key, const auto& value) { j[key] = value; });

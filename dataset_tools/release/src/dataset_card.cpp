@@ -20,7 +20,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kCardFile = "README.md";
-constexpr const char* kExamplesDir = "card";
 
 void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
   std::map<std::string, int> per_weather;
@@ -89,7 +88,7 @@ std::string card_text(const ReleaseConfig& c, const std::vector<std::string>& ex
   layout_section(md);
   md << "\n## Examples\n\n";
   for (const std::string& weather : examples)
-    md << "![" << weather << "](" << kExamplesDir << "/" << weather << ".png)\n\n";
+    md << "![" << weather << "](" << kCardDir << "/" << weather << ".png)\n\n";
   md << "## Reproduce\n\n```\ngen_flowscape --config config.json --out <dir>\n```\nwith "
         "config.json =\n"
      << "```json\n"
@@ -99,26 +98,45 @@ std::string card_text(const ReleaseConfig& c, const std::vector<std::string>& ex
 
 }  // namespace
 
-void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
-  std::vector<std::string> examples;
+namespace {
+
+// The weathers of the release, each once, in the order of the first sequence that has it.
+std::vector<SequencePlan> first_of_each_weather(const ReleaseConfig& config) {
+  std::vector<SequencePlan> firsts;
   std::set<std::string> seen;
-  for (const SequencePlan& plan : plan_sequences(config)) {
-    if (!seen.insert(plan.weather).second) continue;
-    write_image(out / kExamplesDir / (plan.weather + ".png"),
+  for (const SequencePlan& plan : plan_sequences(config))
+    if (seen.insert(plan.weather).second) firsts.push_back(plan);
+  return firsts;
+}
+
+fs::path example_file(const std::string& weather) {
+  return fs::path(kCardDir) / (weather + ".png");
+}
+
+}  // namespace
+
+void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
+  remove_temporary_files(out / kCardDir);
+  std::vector<std::string> examples;
+  for (const SequencePlan& plan : first_of_each_weather(config)) {
+    write_image(out / example_file(plan.weather),
                 contact_sheet({frame_preview_row(sequence_dir(out, plan.name), 0, 512)}));
     examples.push_back(plan.weather);
   }
   write_text(out / kCardFile, card_text(config, examples));
 }
 
-std::vector<fs::path> dataset_card_files(const fs::path& out) {
-  std::vector<fs::path> files;
-  if (fs::exists(out / kCardFile)) files.push_back(kCardFile);
-  if (fs::is_directory(out / kExamplesDir))
-    for (const auto& entry : fs::recursive_directory_iterator(out / kExamplesDir))
-      if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), out));
+std::vector<fs::path> dataset_card_files(const ReleaseConfig& config) {
+  std::vector<fs::path> files{kCardFile};
+  for (const SequencePlan& plan : first_of_each_weather(config))
+    files.push_back(example_file(plan.weather));
   std::sort(files.begin(), files.end());
   return files;
+}
+
+void remove_dataset_card(const fs::path& out) {
+  fs::remove(out / kCardFile);
+  fs::remove_all(out / kCardDir);
 }
 
 }  // namespace flowscape

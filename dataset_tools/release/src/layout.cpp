@@ -8,7 +8,6 @@ namespace fs = std::filesystem;
 namespace {
 
 // The layout's names and templates; layout_json() states the same as str.format templates.
-constexpr const char* kSequencesDir = "sequences";
 constexpr const char* kSplitsDir = "splits";
 
 std::string numbered(const char* format, int value) {
@@ -84,6 +83,15 @@ std::vector<fs::path> frame_files(int frame, int frames, bool cube) {
     for (const OutputKind& kind : kOutputKinds)
       if ((view ? kind.cube : kind.erp) && has_frame(kind, frame, frames))
         files.push_back(frame_file(kind, view, frame));
+  return files;
+}
+
+std::vector<fs::path> sequence_files(int frames, bool cube) {
+  std::vector<fs::path> files{kMetaFile};
+  for (int f = 0; f < frames; ++f) {
+    const std::vector<fs::path> frame = frame_files(f, frames, cube);
+    files.insert(files.end(), frame.begin(), frame.end());
+  }
   return files;
 }
 

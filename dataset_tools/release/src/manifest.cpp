@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "flowscape/core/files.h"
@@ -22,10 +23,13 @@ nlohmann::json file_entry(const fs::path& file) {
   return {{"sha256", sha256_file(file)}, {"bytes", fs::file_size(file)}};
 }
 
-std::vector<fs::path> files_under(const fs::path& root, const fs::path& dir) {
+// The files of the given sequences of a release made with `config`, relative to the release.
+std::vector<fs::path> release_sequence_files(const ReleaseConfig& config,
+                                             const std::vector<SequencePlan>& plans) {
+  const std::vector<fs::path> in_sequence = sequence_files(config.frames, config.cube);
   std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root / dir))
-    if (entry.is_regular_file()) files.push_back(fs::relative(entry.path(), root));
+  for (const SequencePlan& plan : plans)
+    for (const fs::path& file : in_sequence) files.push_back(sequence_dir("", plan.name) / file);
   return files;
 }
 
@@ -78,16 +82,50 @@ ShardManifest read_shard_manifest(const fs::path& path) {
   }
 }
 
+constexpr const char* kRefusedPrefix = "refused-";
+
+// The shard manifests in manifests/ (sorted by name); what refused shards recorded is not one.
 std::vector<ShardManifest> read_shard_manifests(const fs::path& out) {
   const fs::path dir = out / kShardDir;
   if (!fs::is_directory(dir)) throw FileError(dir, "no shard manifests (did the shards run?)");
   std::vector<ShardManifest> shards;
   for (const auto& entry : fs::directory_iterator(dir))
-    shards.push_back(read_shard_manifest(entry.path()));
+    if (!entry.path().filename().string().starts_with(kRefusedPrefix))
+      shards.push_back(read_shard_manifest(entry.path()));
   if (shards.empty()) throw FileError(dir, "no shard manifests (did the shards run?)");
   std::sort(shards.begin(), shards.end(),
             [](const ShardManifest& a, const ShardManifest& b) { return a.path < b.path; });
   return shards;
+}
+
+fs::path refused_shard_path(const fs::path& out, int shard, int shards) {
+  ReleaseConfig config;
+  config.shard = shard, config.shards = shards;
+  const fs::path manifest = shard_manifest_path(out, config);
+  return manifest.parent_path() / (kRefusedPrefix + manifest.filename().string());
+}
+
+// "shard 1 was refused: its config differs (spp: 1 in shard-0-of-2.json, 2 in shard 1)" for each
+// missing shard that recorded a refusal.
+std::string refusals(const fs::path& out, const ShardManifest& reported,
+                     const std::vector<int>& missing) {
+  std::string text;
+  for (int k : missing) {
+    const fs::path refused = refused_shard_path(out, k, reported.shards);
+    if (!fs::exists(refused)) continue;
+    const nlohmann::json attempt = read_json(refused).value("config", nlohmann::json());
+    text += "; shard " + std::to_string(k) + " was refused: its config differs (" +
+            config_differences(reported.config, "in " + reported.path.filename().string(), attempt,
+                               "in shard " + std::to_string(k)) +
+            ")";
+  }
+  return text;
+}
+
+std::string number_list(const std::vector<int>& numbers) {
+  std::string text;
+  for (int k : numbers) text += (text.empty() ? "" : ", ") + std::to_string(k);
+  return text;
 }
 
 void check_sequence_complete(const fs::path& out, const ReleaseConfig& config,
@@ -103,15 +141,12 @@ void check_sequence_complete(const fs::path& out, const ReleaseConfig& config,
 
 }  // namespace
 
-nlohmann::json file_hashes(const fs::path& out, const std::vector<SequencePlan>& plans) {
-  std::vector<fs::path> files;
-  for (const SequencePlan& plan : plans) {
-    const fs::path dir = sequence_dir(out, plan.name);
-    if (!fs::exists(dir)) throw FileError(dir, "sequence folder missing");
-    const std::vector<fs::path> found = files_under(out, fs::relative(dir, out));
-    files.insert(files.end(), found.begin(), found.end());
-  }
+nlohmann::json file_hashes(const fs::path& out, const ReleaseConfig& config,
+                           const std::vector<SequencePlan>& plans) {
+  std::vector<fs::path> files = release_sequence_files(config, plans);
   std::sort(files.begin(), files.end());
+  for (const fs::path& file : files)
+    if (!fs::is_regular_file(out / file)) throw FileError(out / file, "missing");
   std::vector<nlohmann::json> entries(files.size());
   tbb::parallel_for(std::size_t(0), files.size(),
                     [&](std::size_t k) { entries[k] = file_entry(out / files[k]); });
@@ -122,7 +157,7 @@ nlohmann::json file_hashes(const fs::path& out, const std::vector<SequencePlan>&
 
 void write_manifest(const fs::path& out, const ReleaseConfig& config, const nlohmann::json& files) {
   nlohmann::json all = files;
-  for (const fs::path& card : dataset_card_files(out))
+  for (const fs::path& card : dataset_card_files(config))
     all[card.generic_string()] = file_entry(out / card);
   if (fs::exists(out / kConfigFile)) all[kConfigFile] = file_entry(out / kConfigFile);
   const nlohmann::json manifest = {{"generator", kGeneratorVersion},
@@ -145,31 +180,74 @@ void write_shard_manifest(const fs::path& out, const ReleaseConfig& config,
                                 {"shard", config.shard},
                                 {"shards", config.shards},
                                 {"files", files}};
-  write_text(shard_manifest_path(out, config), shard.dump(1) + "\n");
+  const fs::path path = shard_manifest_path(out, config);
+  remove_temporaries_of(path);
+  write_text(path, shard.dump(1) + "\n");
+  fs::remove(refused_shard_path(out, config.shard, config.shards));
 }
 
-ReleaseConfig merge_shards(const fs::path& out, bool verify) {
-  const std::vector<ShardManifest> shards = read_shard_manifests(out);
-  ReleaseConfig config = release_config_from_json(shards.front().config);
-  config.shards = shards.front().shards;
-  std::vector<bool> seen(std::size_t(config.shards), false);
+void write_refused_shard(const fs::path& out, const ReleaseConfig& config) {
+  const nlohmann::json attempt = {
+      {"config", to_json(config)}, {"shard", config.shard}, {"shards", config.shards}};
+  write_text(refused_shard_path(out, config.shard, config.shards), attempt.dump(1) + "\n");
+}
+
+namespace {
+
+// Every shard reported, with one config and shard count.
+void check_shards_agree(const fs::path& out, const std::vector<ShardManifest>& shards) {
+  const ShardManifest& first = shards.front();
+  std::vector<bool> seen(std::size_t(first.shards), false);
+  for (const ShardManifest& shard : shards) {
+    if (shard.config != first.config)
+      throw FileError(shard.path,
+                      "made with another config than " + first.path.filename().string() + " (" +
+                          config_differences(first.config, "there", shard.config, "here") + ")");
+    if (shard.shards != first.shards)
+      throw FileError(shard.path, "one of " + std::to_string(shard.shards) + " shards, " +
+                                      first.path.filename().string() + " one of " +
+                                      std::to_string(first.shards));
+    seen[std::size_t(shard.shard)] = true;
+  }
+  std::vector<int> missing;
+  for (int k = 0; k < first.shards; ++k)
+    if (!seen[std::size_t(k)]) missing.push_back(k);
+  if (!missing.empty())
+    throw FileError(out / kShardDir, "no manifest from shard(s) " + number_list(missing) + " of " +
+                                         std::to_string(first.shards) + ": rerun them" +
+                                         refusals(out, first, missing));
+}
+
+// The union of the shards' file lists; each must name a file of the release.
+nlohmann::json shard_files(const ReleaseConfig& config, const std::vector<ShardManifest>& shards) {
+  std::set<std::string> release;
+  for (const fs::path& file : release_sequence_files(config, plan_sequences(config)))
+    release.insert(file.generic_string());
   nlohmann::json files = nlohmann::json::object();
   for (const ShardManifest& shard : shards) {
-    if (shard.config != shards.front().config || shard.shards != config.shards)
-      throw FileError(shard.path, "made with another config or shard count than " +
-                                      shards.front().path.filename().string());
-    seen[std::size_t(shard.shard)] = true;
+    for (const auto& [name, entry] : shard.files.items())
+      if (!release.contains(name))
+        throw FileError(shard.path, "lists \"" + name + "\", which is not part of the release");
     files.update(shard.files);
   }
-  std::string missing;
-  for (std::size_t k = 0; k < seen.size(); ++k)
-    if (!seen[k]) missing += (missing.empty() ? "" : ", ") + std::to_string(k);
-  if (!missing.empty())
-    throw FileError(out / kShardDir, "no manifest from shard(s) " + missing + " of " +
-                                         std::to_string(config.shards) + ": rerun them");
+  return files;
+}
+
+}  // namespace
+
+ReleaseConfig merge_shards(const fs::path& out, bool verify) {
+  remove_temporary_files(out / kShardDir);
+  const std::vector<ShardManifest> shards = read_shard_manifests(out);
+  check_shards_agree(out, shards);
+  ReleaseConfig config = release_config_from_json(shards.front().config);
+  config.shards = shards.front().shards;
+  const nlohmann::json files = shard_files(config, shards);
   const std::vector<SequencePlan> plans = plan_sequences(config);
   for (const SequencePlan& plan : plans) check_sequence_complete(out, config, plan);
-  const nlohmann::json on_disk = verify ? file_hashes(out, plans) : nlohmann::json();
+  // every shard has finished: what their killed runs left anywhere is stale
+  remove_temporary_files(out);
+  remove_temporary_files_under(sequence_dir(out, ""));
+  const nlohmann::json on_disk = verify ? file_hashes(out, config, plans) : nlohmann::json();
   for (const auto& [path, entry] : files.items()) {
     if (!fs::exists(out / path)) throw FileError(out / path, "listed by a shard but missing");
     if (fs::file_size(out / path) != entry.at("bytes").get<std::uintmax_t>())
@@ -178,10 +256,54 @@ ReleaseConfig merge_shards(const fs::path& out, bool verify) {
       throw FileError(out / path, "sha256 differs from its shard manifest");
   }
   config.shard = 0, config.shards = 1;
+  if (verify) throw_first_problem(release_problems(out, config));
   write_dataset_card(out, config);
   write_manifest(out, config, files);
   fs::remove_all(out / kShardDir);
   return config;
+}
+
+std::vector<ReleaseProblem> release_problems(const fs::path& out, const ReleaseConfig& config) {
+  std::set<fs::path> release;
+  for (const fs::path& file : release_sequence_files(config, plan_sequences(config)))
+    release.insert(file);
+  for (const fs::path& file : dataset_card_files(config)) release.insert(file);
+  std::vector<ReleaseProblem> problems;
+  if (!fs::is_directory(out)) return problems;
+  for (const auto& entry : fs::recursive_directory_iterator(out)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path relative = fs::relative(entry.path(), out);
+    const fs::path top = *relative.begin();
+    if (is_temporary_file(relative))
+      problems.push_back({entry.path(), "temporary file of an interrupted run"});
+    else if ((top == kSequencesDir || top == kCardDir) && !release.contains(relative))
+      problems.push_back({entry.path(), "not part of the release"});
+  }
+  if (fs::exists(out / kManifestFile)) {
+    const nlohmann::json manifest = read_json(out / kManifestFile);
+    const nlohmann::json listed =
+        manifest.is_object() ? manifest.value("files", nlohmann::json()) : nlohmann::json();
+    if (!listed.is_object()) problems.push_back({out / kManifestFile, "has no \"files\" object"});
+    for (const auto& [name, entry] : listed.items()) {
+      if (!fs::is_regular_file(out / name))
+        problems.push_back({out / name, "listed in manifest.json but missing"});
+      else if (!entry.is_object() ||
+               entry.value("bytes", nlohmann::json()) != fs::file_size(out / name))
+        problems.push_back({out / name, "size differs from manifest.json"});
+    }
+  }
+  std::sort(problems.begin(), problems.end(),
+            [](const ReleaseProblem& a, const ReleaseProblem& b) { return a.path < b.path; });
+  return problems;
+}
+
+void throw_first_problem(const std::vector<ReleaseProblem>& problems) {
+  if (problems.empty()) return;
+  const std::size_t more = problems.size() - 1;
+  throw FileError(
+      problems.front().path,
+      problems.front().problem +
+          (more ? " (and " + std::to_string(more) + " more: gen_flowscape --check)" : ""));
 }
 
 }  // namespace flowscape

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "flowscape/core/files.h"
 #include "flowscape/core/random.h"
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/flow_io.h"
@@ -104,6 +105,7 @@ Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t 
 }
 
 void write_split_files(const fs::path& release, const Split& split) {
+  remove_temporary_files(split_file(release, "train").parent_path());
   write_text(split_file(release, "train"), pair_lines(split.train));
   write_text(split_file(release, "test"), pair_lines(split.test));
 }
@@ -123,6 +125,7 @@ std::vector<std::string> write_panoflow_tree(const fs::path& release, const Spli
   const fs::path tree = release / "panoflow", conventions = tree / "flowscape.json";
   if (fs::exists(tree) && (!fs::exists(conventions) || read_json(conventions) != to_json(options)))
     fs::remove_all(tree);  // made with other conventions: none of its flow files can be kept
+  remove_temporary_files_under(tree);
   struct Job {
     fs::path sequence, target;
     int frame;

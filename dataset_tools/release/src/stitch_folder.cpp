@@ -4,6 +4,7 @@
 #include <optional>
 #include <set>
 
+#include "flowscape/core/files.h"
 #include "flowscape/core/progress.h"
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/cubemap_io.h"
@@ -31,21 +32,38 @@ bool has_cube_file(const fs::path& cube_dir, const OutputKind& kind, const std::
   return fs::exists(cube_file(cube_dir, Face::Front, folder(kind), file));
 }
 
+// A cube frame read from the folder must have the faces the map was made for (the size of the
+// first frame file found), else its front face file is named.
+void check_face_size(int width, const CubeToErp& map, const StitchFolderOptions& o,
+                     const OutputKind& kind, const std::string& file) {
+  const std::string expected = std::to_string(map.sampling.src_width);
+  if (width != map.sampling.src_width)
+    throw FileError(cube_file(o.cube_dir, Face::Front, folder(kind), file),
+                    "cube face is " + std::to_string(width) + "x" + std::to_string(width) +
+                        ", the cube's other files have " + expected + "x" + expected + " faces");
+}
+
 void stitch_flow(const StitchFolderOptions& o, const CubeToErp& map, const std::string& file) {
-  const OutputKind &instance_kind = output_kind("instance"), &valid_kind = output_kind("valid");
+  const OutputKind &flow_kind = output_kind("flow"), &instance_kind = output_kind("instance"),
+                   &valid_kind = output_kind("valid");
   const Flow flow = read_cube_flow(o.cube_dir, file);
+  check_face_size(flow.uv.width, map, o, flow_kind, file);
   const std::string mask = mask_file(file);
   std::optional<Image<std::uint16_t>> instance;
   std::optional<Image<std::uint8_t>> valid;
-  if (has_cube_file(o.cube_dir, instance_kind, mask))
+  if (has_cube_file(o.cube_dir, instance_kind, mask)) {
     instance = read_cube_image_as<std::uint16_t>(o.cube_dir, folder(instance_kind), mask);
-  if (has_cube_file(o.cube_dir, valid_kind, mask))
+    check_face_size(instance->width, map, o, instance_kind, mask);
+  }
+  if (has_cube_file(o.cube_dir, valid_kind, mask)) {
     valid = read_cube_image_as<std::uint8_t>(o.cube_dir, folder(valid_kind), mask);
+    check_face_size(valid->width, map, o, valid_kind, mask);
+  }
   FlowInput input{flow.uv.view()};
   if (instance) input.instance = instance->view();
   input.valid = valid ? valid->view() : flow.valid.view();
   const FlowOutput erp = cube_to_erp_flow(map, input, o.flow_mode);
-  write_flow(o.out_dir / folder(output_kind("flow")) / file, erp.flow.view(), erp.valid.view());
+  write_flow(o.out_dir / folder(flow_kind) / file, erp.flow.view(), erp.valid.view());
   if (valid) write_image(o.out_dir / folder(valid_kind) / mask, erp.valid);
 }
 
@@ -53,6 +71,7 @@ void stitch_image(const StitchFolderOptions& o, const CubeToErp& map, const Job&
   const AnyImage cube = read_cube_image(o.cube_dir, folder(*job.kind), job.file);
   std::visit(
       [&](const auto& stack) {
+        check_face_size(stack.width, map, o, *job.kind, job.file);
         const auto erp = job.kind->resampling == Resampling::Bilinear
                              ? resample_bilinear(map.sampling, stack.view())
                              : resample_nearest(map.sampling, stack.view());
@@ -106,6 +125,8 @@ int face_size_of(const fs::path& cube_dir) {
 
 std::size_t stitch_cube_folder(const StitchFolderOptions& o) {
   if (!fs::is_directory(o.cube_dir)) throw FileError(o.cube_dir, "cubemap folder not found");
+  for (const OutputKind& kind : kOutputKinds)
+    if (kind.cube) remove_temporary_files(o.out_dir / folder(kind));
   const std::vector<Job> jobs = list_jobs(o);
   if (jobs.empty()) return 0;
   const CubeToErp map = make_cube_to_erp(face_size_of(o.cube_dir), o.height);

@@ -106,26 +106,12 @@ bool meta_readable(const fs::path& dir) {
   }
 }
 
-// "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ.
-std::string config_differences(const nlohmann::json& recorded, const nlohmann::json& now) {
-  std::string text;
-  for (const auto& [key, value] : now.items()) {
-    const nlohmann::json before = recorded.value(key, nlohmann::json());
-    if (before != value)
-      text += (text.empty() ? "" : "; ") + key + ": " + before.dump() + " recorded, " +
-              value.dump() + " now";
-  }
-  for (const auto& [key, value] : recorded.items())
-    if (!now.contains(key)) text += (text.empty() ? "" : "; ") + key + ": unknown here";
-  return text;
-}
-
 // The files and folders of a release that --force deletes (nothing else in `out` is touched).
 void remove_release_files(const fs::path& out) {
   for (const fs::path& entry :
        {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile, out / kShardDir})
     fs::remove_all(entry);
-  for (const fs::path& card : dataset_card_files(out)) fs::remove(out / card);
+  remove_dataset_card(out);
 }
 
 // The config a release in `out` was started with: config.json (written before any frame) or, for a
@@ -143,7 +129,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
                     const SequenceProgress& progress) {
   const fs::path dir = sequence_dir(out, plan.name);
   fs::create_directories(dir);
-  remove_temporary_files(dir);
+  remove_temporary_files_under(dir);
   std::vector<int> frames_to_render;
   for (int f = 0; f < config.frames; ++f) {
     if (all_complete(dir, frame_files(f, config.frames, config.cube)))
@@ -167,25 +153,30 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
 void claim_release(const ReleaseConfig& config, const fs::path& out, bool force) {
   const nlohmann::json now = to_json(config), recorded = recorded_config(out);
   if (!recorded.is_null() && recorded != now) {
-    if (!force)
+    if (!force) {
+      if (config.shards > 1) write_refused_shard(out, config);
       throw FileError(out / (fs::exists(out / kConfigFile) ? kConfigFile : kManifestFile),
                       "this release was made with another config (" +
-                          config_differences(recorded, now) +
+                          config_differences(recorded, "recorded", now, "now") +
                           "): rerun with the recorded values, use another folder, or --force to "
                           "delete the release's files and start over");
+    }
     remove_release_files(out);
   }
   if (recorded != now) write_text(out / kConfigFile, now.dump(1) + "\n");
 }
 
 ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, bool force) {
+  // Only a process that makes the whole release owns the folder's top level: a shard may run
+  // beside others writing config.json, so their temporaries are the merge's to remove.
+  if (config.shards == 1) remove_temporary_files(out);
   claim_release(config, out, force);
   const std::vector<SequencePlan> mine = shard_plans(config);
   Progress progress("gen_flowscape", mine.size() * std::size_t(config.frames), "frames");
   for (const SequencePlan& plan : mine)
     write_sequence(config, plan, out, {[&] { progress.advance(); }, [&] { progress.skip(); }});
   progress.finish();
-  const nlohmann::json files = file_hashes(out, mine);
+  const nlohmann::json files = file_hashes(out, config, mine);
   ReleaseWritten written{out / kManifestFile, mine.size(), mine.size() * std::size_t(config.frames),
                          files.size()};
   if (config.shards > 1) {

@@ -38,7 +38,14 @@ std::string read_file(const std::filesystem::path& path, std::uintmax_t max_byte
 // The temporary name write_file uses for `path`: hidden, same folder, same extension, with the
 // process id (".partial-<pid>-name.ext").
 std::filesystem::path temporary_path(const std::filesystem::path& path);
-// Removes the temporary files a killed run left anywhere under `dir`.
-void remove_temporary_files(const std::filesystem::path& dir);
+// Whether a file's name is one temporary_path makes (".partial-<digits>-<name>"), whoever made it.
+bool is_temporary_file(const std::filesystem::path& path);
+// Removes the temporary files a killed run left in `dir` itself (not in its subfolders); files of
+// other names are never touched, and a missing `dir` is nothing to do. Returns how many went.
+std::size_t remove_temporary_files(const std::filesystem::path& dir);
+// The same in `dir` and every folder below it.
+std::size_t remove_temporary_files_under(const std::filesystem::path& dir);
+// The temporaries of `path` alone, whichever process wrote them (a file only one writer makes).
+std::size_t remove_temporaries_of(const std::filesystem::path& path);
 
 }  // namespace flowscape

@@ -32,6 +32,10 @@ struct ReleaseConfig {
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
 nlohmann::json to_json(const ReleaseConfig& config);
+// "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ between two configs as JSON,
+// each value followed by the name of the config it comes from.
+std::string config_differences(const nlohmann::json& first, const std::string& first_name,
+                               const nlohmann::json& second, const std::string& second_name);
 // `base` with the values the JSON gives; unknown keys are an error (a typo would go unnoticed).
 ReleaseConfig release_config_from_json(const nlohmann::json& json, ReleaseConfig base = {});
 

@@ -8,8 +8,12 @@
 
 namespace flowscape {
 
+// Removes temporaries an interrupted card left in card/, then writes the card's files.
 void write_dataset_card(const std::filesystem::path& out, const ReleaseConfig& config);
-// The card's files that exist under `out` (relative to it, sorted).
-std::vector<std::filesystem::path> dataset_card_files(const std::filesystem::path& out);
+// The files the card of a release made with `config` has, relative to the release (sorted):
+// README.md and one example per weather under card/.
+std::vector<std::filesystem::path> dataset_card_files(const ReleaseConfig& config);
+// What --force deletes of a card made with any config.
+void remove_dataset_card(const std::filesystem::path& out);
 
 }  // namespace flowscape

@@ -62,12 +62,15 @@ bool has_frame(const OutputKind& kind, int frame, int frames);
 std::string sequence_name(int map, int sequence);  // "map03_seq05"
 std::string frame_name(int frame);                 // "000042"
 std::filesystem::path sequence_dir(const std::filesystem::path& release, const std::string& name);
+inline constexpr const char* kSequencesDir = "sequences";  // <release>/sequences/<name>
 inline constexpr const char* kMetaFile = "meta.json";
 inline constexpr const char* kManifestFile = "manifest.json";
 // The config a release is being made with, written before its first frame (writer.h).
 inline constexpr const char* kConfigFile = "config.json";
 // Where the shards of a release put their manifests until flowscape_merge joins them (manifest.h).
 inline constexpr const char* kShardDir = "manifests";
+// The dataset card's example images (dataset_card.h), beside its README.md.
+inline constexpr const char* kCardDir = "card";
 
 // A view of a sequence: the ERP panorama (no face) or one cube face.
 using View = std::optional<Face>;
@@ -81,6 +84,8 @@ std::filesystem::path erp_file(const std::filesystem::path& sequence, std::strin
                                int frame);
 // Every file of one frame, relative to the sequence folder.
 std::vector<std::filesystem::path> frame_files(int frame, int frames, bool cube);
+// Every file of a sequence of `frames` frames (meta.json and each frame's), relative to its folder.
+std::vector<std::filesystem::path> sequence_files(int frames, bool cube);
 
 // splits/<side>.txt of a release.
 std::filesystem::path split_file(const std::filesystem::path& release, const std::string& side);
