@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cstdio>
 #include <sstream>
 
@@ -24,6 +25,20 @@ std::vector<std::string> comma_list(const std::string& text) {
   std::stringstream list(text);
   for (std::string item; std::getline(list, item, ',');) items.push_back(item);
   return items;
+}
+
+// "1,2,4" -> {1, 2, 4}; other text is an option error.
+std::vector<int> parse_gaps(const std::string& text) {
+  std::vector<int> gaps;
+  for (const std::string& item : comma_list(text)) {
+    int gap = 0;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), gap);
+    if (error != std::errc() || end != item.data() + item.size() || item.empty())
+      throw std::invalid_argument("--flow-gaps wants whole numbers separated by commas, e.g. 1,2,4 "
+                                  "(got \"" + text + "\")");
+    gaps.push_back(gap);
+  }
+  return gaps;
 }
 
 }  // namespace
@@ -81,6 +96,16 @@ int main(int argc, char** argv) {
             return text.find('-') == std::string::npos ? "" : "must be a whole number >= 0";
           },
           "UINT64"));
+  std::string outputs, gaps;
+  app.add_option("--outputs", outputs,
+                 "comma-separated output kinds besides the six every release has (color flow "
+                 "semantic instance depth valid): flow_backward (brings valid_backward), "
+                 "valid_backward, scene_flow, normal, normal_shading; all; none")
+      ->default_str("flow_backward,valid_backward");
+  app.add_option("--flow-gaps", gaps,
+                 "comma-separated frame gaps of every flow kind (1 is the next frame; flow_gap<k> "
+                 "and, with backward flow, flow_backward_gap<k> for the others)")
+      ->default_str("1");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
@@ -104,6 +129,9 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
+    if (!outputs.empty())
+      given["outputs"] = outputs == "none" ? std::vector<std::string>{} : comma_list(outputs);
+    if (!gaps.empty()) given["flow_gaps"] = parse_gaps(gaps);
     if (no_cube) given["cube"] = false;
     if (!models.empty()) given["models"] = parse_models(models);
     sources.file = config_file;

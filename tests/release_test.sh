@@ -92,7 +92,7 @@ check "--no-cube writes ERP only" "$bin/gen_flowscape" --maps 1 --sequences-per-
 check "no cube folder" test ! -e "$work/c/sequences/map00_seq00/cube"
 echo '{"maps": 1, "sequences_per_map": 2, "frames": 2, "resolution": 16, "face_size": 8, "spp": 1, "weathers": ["rain"]}' >"$work/config.json"
 check "--config file" "$bin/gen_flowscape" --config "$work/config.json" --out "$work/d"
-check "the config's weather" grep -q '"preset": "rain"' "$work/d/sequences/map00_seq01/meta.json"
+check "the config's weather" grep -q '"preset":"rain"' "$work/d/sequences/map00_seq01/meta.json"
 check "shards write their share" "$bin/gen_flowscape" --config "$work/config.json" --shard 1/2 --out "$work/e"
 check "shard 1/2 has sequence 1 only" bash -c "[ -d '$work/e/sequences/map00_seq01' ] && [ ! -d '$work/e/sequences/map00_seq00' ] && [ -s '$work/e/manifests/shard-1-of-2.json' ]"
 check "merge refuses a missing shard" fails_clearly "no manifest from shard(s) 0 of 2: rerun them" "$bin/flowscape_merge" "$work/e"

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   }
   ReleaseConfig config;
   config.maps = 1, config.sequences_per_map = 1, config.frames = 2, config.height = 32;
-  config.cube = false;
+  config.cube = false, config.outputs = {};  // the six kinds of FlowScape
   const fs::path out = argv[1];
   const SequencePlan plan = plan_sequences(config).front();
   const fs::path seq = sequence_dir(out, plan.name);

@@ -30,6 +30,15 @@ def classic_flow(flow):
     return out
 
 
+def wrapped_flow(flow):
+    """Classic ERP flow -> 360-degree flow (the shortest way round, u in (-W/2, W/2])."""
+    width = flow.shape[1]
+    out = flow.copy()
+    out[..., 0] = flow[..., 0] - width * np.round(flow[..., 0] / width)
+    out[..., 0] = np.where(out[..., 0] <= -width / 2, out[..., 0] + width, out[..., 0])
+    return out
+
+
 class Concat:
     """Datasets one after another, as RAFT builds its training mix (`100 * sintel + things`):
     supports len, indexing, `+` and `n *` like FlowScape itself."""
@@ -69,6 +78,14 @@ class FlowScape:
     With `extras`, a fifth element is a dict holding what was asked: 'semantic' (H x W int64,
     FlowScape layout only), 'meta' (scene, frame, weather, map).
 
+    outputs: more output kinds of the release to put in the extras dict under their names (numpy
+    H x W x C before tensors, C x H x W tensors after): 'flow_backward' and 'valid_backward' (read
+    at the pair's second frame: its flow back to the first), 'flow_gap2', 'scene_flow', 'normal',
+    'normal_shading', ... as the release's manifest lists them (kinds of the backward direction
+    are read at the second frame, every other kind at the first); only pairs that have every
+    asked kind are items. Flow keeps the release's stored form (see the manifest's
+    conventions); unknown flow values (1e10) are left in.
+
     root: a release folder (or its panoflow/ folder); split: 'train' or 'test';
     weathers: None or a list such as ['fog', 'rain']; flow_mode: '360' or 'classic';
     exclude_sky: drop sky pixels from valid (needs semantics); exclude_poles: drop the rows within
@@ -84,7 +101,7 @@ class FlowScape:
 
     def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
                  extras=(), transform=None, as_tensors=True, exclude_poles=0.0, max_flow=None,
-                 faces=None):
+                 faces=None, outputs=()):
         if split not in ("train", "test"):
             raise ValueError(f"split must be 'train' or 'test', not {split!r}")
         if flow_mode not in ("360", "classic"):
@@ -93,6 +110,10 @@ class FlowScape:
         self.extras, self.transform, self.as_tensors = tuple(extras), transform, as_tensors
         self.exclude_poles, self.max_flow = float(exclude_poles), max_flow
         self.faces = None if faces is None else tuple(faces)
+        self.outputs = tuple(outputs)
+        # the stored flow's form and unknown marker: a release's manifest states them
+        # (conventions); the PanoFlow tree's flow is read as it is stored
+        self.stored_seam, self.unknown_flow = "360", UNKNOWN_FLOW
         if self.faces is not None and (set(self.faces) - set(FACES) or not self.faces):
             raise ValueError(f"faces must be some of {FACES}, not {faces!r}")
         if os.path.isfile(os.path.join(self.root, "manifest.json")):
@@ -101,6 +122,8 @@ class FlowScape:
             self.layout, self.items = "panoflow", self._panoflow_items(split, weathers)
         if self.faces is not None and self.layout != "flowscape":
             raise ValueError(f"{self.root}: cube faces need the release layout")
+        if self.outputs and self.layout != "flowscape":
+            raise ValueError(f"{self.root}: outputs need the release layout")
         if (exclude_sky or "semantic" in self.extras) and self.layout != "flowscape":
             raise ValueError(f"{self.root}: semantics (exclude_sky) need the release layout, "
                              "the PanoFlow tree has none")
@@ -109,6 +132,12 @@ class FlowScape:
 
     def _release_items(self, split, weathers):
         layout = ReleaseLayout(self.root)
+        self.stored_seam = layout.conventions["flow"]["erp_seam"]
+        self.unknown_flow = float(layout.conventions["flow"].get("unknown_value", UNKNOWN_FLOW))
+        missing = [kind for kind in self.outputs if kind not in layout.kinds]
+        if missing:
+            raise ValueError(f"{self.root}: the release has no {', '.join(missing)} (it holds "
+                             f"{', '.join(layout.kinds)}; gen_flowscape --outputs makes more)")
         split_file = layout.split_file(split)
         if not os.path.isfile(split_file):
             raise ValueError(f"{split_file}: missing (run flowscape_split on the release)")
@@ -120,12 +149,18 @@ class FlowScape:
             frame = int(frame)
             if scene not in weather_of:
                 meta = layout.meta(scene)
-                weather_of[scene] = (meta["weather"]["preset"], meta["map_name"])
-            weather, map_name = weather_of[scene]
+                weather_of[scene] = (meta["weather"]["preset"], meta["map_name"], meta["frames"])
+            weather, map_name, frames = weather_of[scene]
+            at = {kind: frame + 1 if layout.step(kind) < 0 else frame for kind in self.outputs}
+            if any(not layout.has_frame(kind, at[kind], frames) for kind in self.outputs):
+                continue
             if weathers is None or weather in weathers:
                 for face in self.faces or (None,):
                     item = {kind: layout.frame_file(scene, kind, frame, face)
                             for kind in ("flow", "valid", "semantic")}
+                    item["outputs"] = {kind: (layout.frame_file(scene, kind, at[kind], face),
+                                              layout.kinds[kind]["resampling"] == "flow")
+                                       for kind in self.outputs}
                     item.update(img1=layout.frame_file(scene, "color", frame, face),
                                 img2=layout.frame_file(scene, "color", frame + 1, face),
                                 meta={"scene": scene, "frame": frame, "weather": weather,
@@ -173,7 +208,7 @@ class FlowScape:
         """The item as numpy arrays (H x W x C), before the transform and tensors."""
         item = self.items[index]
         flow = read_flo(item["flow"])
-        known = (np.abs(flow) < 1e9).all(axis=2)
+        known = (np.abs(flow) < self.unknown_flow / 10).all(axis=2)
         flow = np.where(known[..., None], flow, 0).astype(np.float32)
         valid = known.copy()
         if "valid" in item:
@@ -183,11 +218,13 @@ class FlowScape:
             valid &= pole_mask(valid.shape[0], self.exclude_poles)[:, None]
         if self.max_flow is not None:
             valid &= np.hypot(flow[..., 0], flow[..., 1]) < self.max_flow
-        classic = panorama and self.flow_mode == "classic"
+        if panorama and self.flow_mode != self.stored_seam:
+            flow = classic_flow(flow) if self.flow_mode == "classic" else wrapped_flow(flow)
         sample = {"img1": read_image(item["img1"])[..., :3].astype(np.float32),
                   "img2": read_image(item["img2"])[..., :3].astype(np.float32),
-                  "flow": classic_flow(flow) if classic else flow,
-                  "valid": valid.astype(np.float32), "meta": dict(item["meta"])}
+                  "flow": flow, "valid": valid.astype(np.float32), "meta": dict(item["meta"])}
+        for kind, (path, is_flow) in item.get("outputs", {}).items():
+            sample[kind] = read_flo(path) if is_flow else read_image(path)
         if self.exclude_sky or "semantic" in self.extras:
             semantic = read_image(item["semantic"])[..., 0].astype(np.int64)
             if self.exclude_sky:
@@ -206,9 +243,13 @@ class FlowScape:
                torch.from_numpy(np.ascontiguousarray(sample["img2"].transpose(2, 0, 1))),
                torch.from_numpy(np.ascontiguousarray(sample["flow"].transpose(2, 0, 1))),
                torch.from_numpy(np.ascontiguousarray(sample["valid"])))
-        if not self.extras:
+        if not self.extras and not self.outputs:
             return out
         extra = {}
+        for kind in self.outputs:
+            value = np.ascontiguousarray(sample[kind])
+            extra[kind] = torch.from_numpy(value.transpose(2, 0, 1).copy() if value.shape[2] > 1
+                                           else value[..., 0].copy())
         if "semantic" in self.extras:
             extra["semantic"] = torch.from_numpy(sample["semantic"])
         if "meta" in self.extras:

@@ -4,6 +4,13 @@ spells no path of its own."""
 import json
 import os
 
+# What releases from before manifest.json stated its conventions hold (flowscape 0.7).
+FLOWSCAPE_CONVENTIONS = {
+    "frame_rate": 30,
+    "flow": {"value": "target - source", "units": "pixels", "u": "right", "v": "down",
+             "erp_seam": "360", "unknown_value": 1e10},
+}
+
 
 class ReleaseLayout:
     """The layout of the release at `root`; raises ValueError naming the file when it has none."""
@@ -20,6 +27,25 @@ class ReleaseLayout:
             raise ValueError(f"{manifest}: no layout ({error}); rerun the gen_flowscape command "
                              "that made the release to rewrite its manifest") from None
         self.kinds = {kind["name"]: kind for kind in self.layout["kinds"]}
+        with open(manifest) as f:
+            self.conventions = json.load(f).get("conventions", FLOWSCAPE_CONVENTIONS)
+        flow = self.conventions.get("flow", {})
+        wanted = {"value": "target - source", "units": "pixels", "u": "right", "v": "down"}
+        if any(flow.get(key) != value for key, value in wanted.items()) or \
+                flow.get("erp_seam") not in ("360", "classic"):
+            raise ValueError(f"{manifest}: conventions: flow is not target - source in pixels "
+                             f"with u right, v down and a 360 or classic seam ({flow})")
+
+    def step(self, kind):
+        """The frame a kind of frame F connects to is F + step (0: the frame alone)."""
+        row = self.kinds[kind]
+        if "step" in row:
+            return row["step"]
+        return 1 if row.get("pairs_only") else 0
+
+    def has_frame(self, kind, frame, frames):
+        """Whether a sequence of `frames` frames has the kind at `frame` (both ends inside it)."""
+        return 0 <= frame < frames and 0 <= frame + self.step(kind) < frames
 
     def sequence_dir(self, sequence):
         return os.path.join(self.root, self.layout["sequence_dir"].format(sequence=sequence))

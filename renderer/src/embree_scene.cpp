@@ -127,11 +127,12 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     if (masked) masked_.push_back({ref.mesh, coverage});
     bvhs_.push_back(build_bvh(device_, *ref.mesh, masked ? &masked_.back() : nullptr));
   }
-  now_ = instances(), next_ = instances();
+  now_.top = instances();
 }
 
 EmbreeScene::~EmbreeScene() {
-  for (RTCScene s : {now_, next_}) rtcReleaseScene(s);
+  rtcReleaseScene(now_.top);
+  for (const PosedScene& target : targets_) rtcReleaseScene(target.top);
   for (RTCScene s : bvhs_) rtcReleaseScene(s);
   rtcReleaseDevice(device_);
 }
@@ -155,25 +156,28 @@ Pose EmbreeScene::pose_at(unsigned mesh, double t) const {
   return part_pose(actor, actor.parts[ref.part], t);
 }
 
-void EmbreeScene::pose_instances(RTCScene top, double t, std::vector<Pose>& poses) const {
-  poses.resize(bvhs_.size());
+bool EmbreeScene::pose(PosedScene& scene, double t) const {
+  if (scene.posed && scene.time == t) return false;
+  scene.poses.resize(bvhs_.size());
   for (unsigned m = 0; m < bvhs_.size(); ++m) {
-    poses[m] = pose_at(m, t);
-    const Eigen::Matrix<float, 3, 4> transform = poses[m].matrix().topRows<3>().cast<float>();
-    RTCGeometry instance = rtcGetGeometry(top, m);
+    scene.poses[m] = pose_at(m, t);
+    const Eigen::Matrix<float, 3, 4> transform = scene.poses[m].matrix().topRows<3>().cast<float>();
+    RTCGeometry instance = rtcGetGeometry(scene.top, m);
     rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, transform.data());
     rtcCommitGeometry(instance);
   }
-  rtcCommitScene(top);
+  rtcCommitScene(scene.top);
+  scene.time = t, scene.posed = true;
+  return true;
 }
 
-void EmbreeScene::set_times(double now, double next) {
-  if (posed_ && now == time_now_ && next == time_next_) return;  // the six faces of one frame
-  pose_instances(now_, now, poses_now_);
-  inverse_now_.resize(poses_now_.size());
-  for (std::size_t m = 0; m < poses_now_.size(); ++m) inverse_now_[m] = poses_now_[m].inverse();
-  pose_instances(next_, next, poses_next_);
-  posed_ = true, time_now_ = now, time_next_ = next;
+void EmbreeScene::set_times(double now, const std::vector<double>& targets) {
+  if (pose(now_, now)) {
+    inverse_now_.resize(now_.poses.size());
+    for (std::size_t m = 0; m < now_.poses.size(); ++m) inverse_now_[m] = now_.poses[m].inverse();
+  }
+  while (targets_.size() < targets.size()) targets_.push_back({instances()});
+  for (std::size_t k = 0; k < targets.size(); ++k) pose(targets_[k], targets[k]);
 }
 
 Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
@@ -182,7 +186,7 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
   RTCRayHit rh{};
   rh.ray = make_ray(origin, direction, kInfinity);
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(now_, &context, &rh);
+  rtcIntersect1(now_.top, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {true,
           rh.hit.instID[0],
@@ -193,14 +197,14 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
           rh.hit.v};
 }
 
-bool EmbreeScene::occluded(bool at_next, const Vec3& origin, const Vec3& direction,
+bool EmbreeScene::occluded(int target, const Vec3& origin, const Vec3& direction,
                            double distance) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray =
       make_ray(origin, direction,
                std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin)));
-  rtcOccluded1(at_next ? next_ : now_, &context, &ray);
+  rtcOccluded1(target == kNow ? now_.top : targets_[std::size_t(target)].top, &context, &ray);
   return ray.tfar < 0;
 }
 
@@ -212,7 +216,7 @@ void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
   fill_packet(rays, count, kSceneMask | kColorOnlyMask, packet.ray, valid);
   std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
   std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
-  rtcIntersect16(valid, now_, &context, &packet);
+  rtcIntersect16(valid, now_.top, &context, &packet);
   const RTCHit16& hit = packet.hit;
   for (int i = 0; i < count; ++i)
     hits[i] = !valid[i] || hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
@@ -232,7 +236,7 @@ void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) cons
   alignas(64) RTCRay16 packet;
   alignas(64) int valid[kBundleSize];
   fill_packet(rays, count, kSceneMask, packet, valid);
-  rtcOccluded16(valid, now_, &context, &packet);
+  rtcOccluded16(valid, now_.top, &context, &packet);
   for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }
 

@@ -61,38 +61,49 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Poses the instances of both top-level scenes (nothing to do when the times are the last ones).
-  void set_times(double now, double next);
+  // Poses the scene at `now` and one more top-level scene at each target time (a scene already
+  // posed at its time is left as it is: the six faces of one frame).
+  void set_times(double now, const std::vector<double>& targets);
   Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
-  // Whether anything lies within `distance` along the ray (infinity: anywhere).
-  bool occluded(bool at_next, const Vec3& origin, const Vec3& direction, double distance) const;
+  // Whether anything lies within `distance` along the ray (infinity: anywhere), at target time
+  // `target` of set_times (kNow: at `now`).
+  static constexpr int kNow = -1;
+  bool occluded(int target, const Vec3& origin, const Vec3& direction, double distance) const;
   // Up to kBundleSize colour rays as one Embree packet at `now` (unbounded): much faster than
   // single rays when they start close together in similar directions (the samples of one pixel).
   void intersect(const BundleRay* rays, int count, Hit* hits) const;
   void occluded(const BundleRay* rays, int count, bool* blocked) const;
 
-  // Poses at the two times of set_times (evaluated once per call there, not per ray).
-  const Pose& pose_now(unsigned mesh) const { return poses_now_[mesh]; }
+  // Poses at the times of set_times (evaluated once per call there, not per ray).
+  const Pose& pose_now(unsigned mesh) const { return now_.poses[mesh]; }
   const Pose& world_to_object_now(unsigned mesh) const { return inverse_now_[mesh]; }
-  const Pose& pose_next(unsigned mesh) const { return poses_next_[mesh]; }
+  const Pose& pose_at_target(int target, unsigned mesh) const {
+    return targets_[std::size_t(target)].poses[mesh];
+  }
   const MeshRef& mesh(unsigned index) const { return meshes_[index]; }
   const Scene& scene() const { return scene_; }
 
  private:
+  // A top-level scene instancing every BVH, posed at `time`.
+  struct PosedScene {
+    RTCScene top = nullptr;
+    std::vector<Pose> poses;
+    double time = 0;
+    bool posed = false;
+  };
   RTCScene instances() const;
   Pose pose_at(unsigned mesh, double t) const;
-  void pose_instances(RTCScene top, double t, std::vector<Pose>& poses) const;
+  bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
 
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
   std::vector<RTCScene> bvhs_;
   std::vector<MaskedMesh> masked_;  // reserved up front: Embree keeps pointers into it
-  RTCScene now_ = nullptr, next_ = nullptr;
-  std::vector<Pose> poses_now_, poses_next_, inverse_now_;
+  PosedScene now_;
+  std::vector<PosedScene> targets_;  // grown as requests need, never shrunk
+  std::vector<Pose> inverse_now_;
   const CoverageTest* coverage_;
-  bool posed_ = false;
-  double time_now_ = 0, time_next_ = 0;  // of the poses above
 };
 
 }  // namespace flowscape

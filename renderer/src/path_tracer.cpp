@@ -280,7 +280,7 @@ double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 *
 ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
                        const Projection& projection, const FramePair& frames,
                        const RenderOptions& options, RenderStats* stats) {
-  embree.set_times(frames.time, frames.next_time);
+  embree.set_times(frames.time, {});
   const int W = projection.width, H = projection.height;
   ColorLayers out{Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
                   Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),

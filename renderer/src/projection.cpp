@@ -17,6 +17,10 @@ Projection Projection::equirectangular(int height) {
   return {Kind::Equirectangular, 2 * height, height, Mat3::Identity(), 0};
 }
 
+Mat3 Projection::camera_to_rig() const {
+  return kind == Kind::Equirectangular ? face_rotation(Face::Front) : rotation;
+}
+
 Vec3 Projection::ray(Vec2 pixel) const {
   if (kind == Kind::Equirectangular) return direction_from_erp(pixel, width);
   return rotation * Vec3((pixel.x() - width / 2.0) / focal, (pixel.y() - height / 2.0) / focal, 1);

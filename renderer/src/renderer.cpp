@@ -9,6 +9,7 @@
 #include "flowscape/stitcher/geometry.h"
 #include "image_textures.h"
 #include "path_tracer.h"
+#include "surface.h"
 
 namespace flowscape {
 
@@ -40,60 +41,164 @@ ColorLayers Renderer::color_layers(const Projection& projection, const FramePair
 
 namespace {
 
-struct PixelTruth {
-  float u = kUnknownFlow, v = kUnknownFlow, depth;
-  std::uint8_t semantic, valid = 0;
-  std::uint16_t instance = 0;
+constexpr float kNoVector = std::numeric_limits<float>::quiet_NaN();
+
+// What every pixel of one ground-truth call shares.
+struct TruthContext {
+  const EmbreeScene& scene;
+  const ImageTextures& images;
+  const Projection& projection;
+  const TruthRequest& request;
+  FlowMode mode;
+  std::vector<Moment> targets;  // the pair's next moment, then request.more
+  Mat3 world_to_camera;         // the view's camera frame at the frame's time
 };
 
-// Ground truth of the ray through one pixel centre (see Renderer::ground_truth).
-PixelTruth trace_truth(const EmbreeScene& scene, const Projection& projection,
-                       const FramePair& frames, FlowMode mode, Vec2 pixel) {
-  const Vec3 origin = frames.rig.translation(), next_origin = frames.next_rig.translation();
-  const Vec3 direction = (frames.rig.linear() * projection.ray(pixel)).normalized();
-  const Hit hit = scene.intersect(origin, direction);
-  PixelTruth truth{kUnknownFlow, kUnknownFlow, float(hit.distance),
-                   std::uint8_t(SemanticClass::Sky)};
-  Vec3 target_direction = direction;  // world frame, seen from the rig at next_time
+// Where a pixel's surface point (or, for the sky, its direction) is seen at target `k`.
+struct TargetTruth {
+  float u = kUnknownFlow, v = kUnknownFlow;
+  std::uint8_t valid = 0;
+  Vec3 moved = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // the point then, world
+};
+
+// Flow: the hit point, fixed on its object, moved to the object's pose at the target's time and
+// projected by the camera then; the sky moves with the rig's rotation only. Valid: nothing hides
+// the moved point from the camera then.
+TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec3& point,
+                         const Vec3& direction, Vec2 pixel) {
+  const Moment& target = c.targets[std::size_t(k)];
+  const Vec3 target_origin = target.rig.translation();
+  TargetTruth truth;
+  Vec3 target_direction = direction;  // world frame, seen from the rig at the target's time
   double target_distance = std::numeric_limits<double>::infinity();
   if (hit.found) {
-    const Vec3 point = origin + hit.distance * direction;
-    const Vec3 moved = scene.pose_next(hit.mesh) * (scene.pose_now(hit.mesh).inverse() * point);
-    target_direction = moved - next_origin;
+    truth.moved = c.scene.pose_at_target(k, hit.mesh) * (c.scene.world_to_object_now(hit.mesh) * point);
+    target_direction = truth.moved - target_origin;
     target_distance = target_direction.norm();
     target_direction /= target_distance;
-    truth.semantic = std::uint8_t(scene.mesh(hit.mesh).mesh->classes[hit.triangle]);
-    truth.instance = scene.mesh(hit.mesh).instance;
   }
-  const auto target = projection.project(frames.next_rig.linear().transpose() * target_direction);
-  if (!target) return truth;
-  double u = target->x() - pixel.x();
-  if (projection.kind == Projection::Kind::Equirectangular)
-    u = erp_flow_u(wrap_360(u, projection.width), pixel.x(), projection.width, mode);
-  truth.u = float(u), truth.v = float(target->y() - pixel.y());
-  truth.valid = !scene.occluded(true, next_origin, target_direction, target_distance);
+  const auto projected = c.projection.project(target.rig.linear().transpose() * target_direction);
+  if (!projected) return truth;
+  double u = projected->x() - pixel.x();
+  if (c.projection.kind == Projection::Kind::Equirectangular)
+    u = erp_flow_u(wrap_360(u, c.projection.width), pixel.x(), c.projection.width, c.mode);
+  truth.u = float(u), truth.v = float(projected->y() - pixel.y());
+  truth.valid = !c.scene.occluded(k, target_origin, target_direction, target_distance);
   return truth;
+}
+
+void put_vector(Image<float>& image, int x, int y, const Vec3& value) {
+  for (int i = 0; i < 3; ++i) image.pixel(x, y)[i] = float(value[i]);
+}
+
+void put_flow(Image<float>& flow, Image<std::uint8_t>& valid, int x, int y, const TargetTruth& t) {
+  flow.pixel(x, y)[0] = t.u, flow.pixel(x, y)[1] = t.v;
+  *valid.pixel(x, y) = t.valid;
+}
+
+// The normals of the first opaque surface, in the view's camera frame, facing the camera.
+void put_normals(const TruthContext& c, const Hit& hit, const Vec3& direction, Vec2 pixel,
+                 GroundTruth& out, int x, int y) {
+  if (!hit.found) {
+    for (Image<float>* image : {&out.normal, &out.shading_normal})
+      if (!image->data.empty()) std::fill_n(image->pixel(x, y), 3, kNoVector);
+    return;
+  }
+  const Vec3 origin = c.request.pair.rig.translation();
+  if (c.request.normal) {
+    Vec3 normal = (c.scene.pose_now(hit.mesh).linear() * hit.normal.cast<double>()).normalized();
+    if (normal.dot(direction) > 0) normal = -normal;
+    put_vector(out.normal, x, y, c.world_to_camera * normal);
+  }
+  if (c.request.shading_normal) {
+    const Vec3 point = origin + hit.distance * direction;
+    const double footprint = c.projection.pixel_spread(pixel) * hit.distance;
+    const TexturedLook look =
+        is_textured(c.scene, hit)
+            ? textured_look(c.scene, c.images, hit, point, direction, footprint)
+            : TexturedLook{};
+    const Surface surface =
+        surface_at(c.scene, hit, origin, direction, is_textured(c.scene, hit) ? &look : nullptr);
+    put_vector(out.shading_normal, x, y, c.world_to_camera * surface.normal);
+  }
+}
+
+// Every asked-for kind of the ray through `pixel`, into column x, row y of `out`.
+void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int y) {
+  const Pose& rig = c.request.pair.rig;
+  const Vec3 origin = rig.translation();
+  const Vec3 direction = (rig.linear() * c.projection.ray(pixel)).normalized();
+  const Hit hit = c.scene.intersect(origin, direction);
+  *out.depth.pixel(x, y) = float(hit.distance);
+  *out.semantic.pixel(x, y) =
+      std::uint8_t(hit.found ? c.scene.mesh(hit.mesh).mesh->classes[hit.triangle]
+                             : SemanticClass::Sky);
+  *out.instance.pixel(x, y) = hit.found ? c.scene.mesh(hit.mesh).instance : 0;
+  const Vec3 point = origin + hit.distance * direction;
+  for (std::size_t k = 0; k < c.targets.size(); ++k) {
+    const TargetTruth target = trace_target(c, int(k), hit, point, direction, pixel);
+    if (k > 0) {
+      put_flow(out.more[k - 1].flow, out.more[k - 1].valid, x, y, target);
+      continue;
+    }
+    put_flow(out.flow, out.valid, x, y, target);
+    if (c.request.scene_flow)
+      put_vector(out.scene_flow, x, y,
+                 hit.found ? Vec3(c.world_to_camera * (target.moved - point))
+                           : Vec3::Constant(kNoVector));
+  }
+  if (c.request.normal || c.request.shading_normal) put_normals(c, hit, direction, pixel, out, x, y);
+}
+
+// Images of width x height for everything `request` asks for.
+GroundTruth allocate_truth(const TruthRequest& request, int width, int height) {
+  const int W = width, H = height;
+  GroundTruth gt{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1), Image<std::uint16_t>(W, H, 1),
+                 Image<float>(W, H, 1), Image<std::uint8_t>(W, H, 1)};
+  for (std::size_t k = 0; k < request.more.size(); ++k)
+    gt.more.push_back({Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)});
+  if (request.scene_flow) gt.scene_flow = Image<float>(W, H, 3);
+  if (request.normal) gt.normal = Image<float>(W, H, 3);
+  if (request.shading_normal) gt.shading_normal = Image<float>(W, H, 3);
+  return gt;
+}
+
+TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
+                           const Projection& projection, const TruthRequest& request,
+                           FlowMode mode) {
+  TruthContext c{scene, images, projection, request, mode,
+                 {{request.pair.next_time, request.pair.next_rig}},
+                 (request.pair.rig.linear() * projection.camera_to_rig()).transpose()};
+  c.targets.insert(c.targets.end(), request.more.begin(), request.more.end());
+  std::vector<double> times;
+  for (const Moment& target : c.targets) times.push_back(target.time);
+  scene.set_times(request.pair.time, times);
+  return c;
 }
 
 }  // namespace
 
 GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair& frames,
                                    FlowMode mode) {
-  EmbreeScene& scene = impl_->embree;
-  scene.set_times(frames.time, frames.next_time);
-  const int W = projection.width, H = projection.height;
-  GroundTruth gt{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1), Image<std::uint16_t>(W, H, 1),
-                 Image<float>(W, H, 1), Image<std::uint8_t>(W, H, 1)};
-  tbb::parallel_for(0, H, [&](int y) {
-    for (int x = 0; x < W; ++x) {
-      const PixelTruth t = trace_truth(scene, projection, frames, mode, Vec2(x + 0.5, y + 0.5));
-      gt.flow.pixel(x, y)[0] = t.u, gt.flow.pixel(x, y)[1] = t.v;
-      *gt.semantic.pixel(x, y) = t.semantic;
-      *gt.instance.pixel(x, y) = t.instance;
-      *gt.depth.pixel(x, y) = t.depth;
-      *gt.valid.pixel(x, y) = t.valid;
-    }
+  return ground_truth(projection, TruthRequest{frames}, mode);
+}
+
+GroundTruth Renderer::ground_truth(const Projection& projection, const TruthRequest& request,
+                                   FlowMode mode) {
+  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
+  GroundTruth gt = allocate_truth(request, projection.width, projection.height);
+  tbb::parallel_for(0, projection.height, [&](int y) {
+    for (int x = 0; x < projection.width; ++x) trace_truth(c, Vec2(x + 0.5, y + 0.5), gt, x, y);
   });
+  return gt;
+}
+
+GroundTruth Renderer::ground_truth_at(const Projection& projection, const TruthRequest& request,
+                                      const std::vector<Vec2>& pixels, FlowMode mode) {
+  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
+  GroundTruth gt = allocate_truth(request, int(pixels.size()), 1);
+  tbb::parallel_for(std::size_t(0), pixels.size(),
+                    [&](std::size_t k) { trace_truth(c, pixels[k], gt, int(k), 0); });
   return gt;
 }
 
@@ -109,16 +214,29 @@ void put_face(Image<T>& cube, Face face, const Image<T>& image) {
 
 CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,
                       const RenderOptions* color_options, FlowMode mode) {
+  return render_cube(renderer, face_size, TruthRequest{frames}, color_options, mode);
+}
+
+CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& request,
+                      const RenderOptions* color_options, FlowMode mode) {
   CubeFrame cube;
   GroundTruth& all = cube.truth;
+  all.more.resize(request.more.size());
   for (Face face : kFaces) {
     const Projection projection = Projection::cube_face(face, face_size);
-    const GroundTruth gt = renderer.ground_truth(projection, frames, mode);
+    const GroundTruth gt = renderer.ground_truth(projection, request, mode);
     put_face(all.flow, face, gt.flow), put_face(all.semantic, face, gt.semantic);
     put_face(all.instance, face, gt.instance), put_face(all.depth, face, gt.depth);
     put_face(all.valid, face, gt.valid);
+    for (std::size_t k = 0; k < gt.more.size(); ++k)
+      put_face(all.more[k].flow, face, gt.more[k].flow),
+          put_face(all.more[k].valid, face, gt.more[k].valid);
+    for (auto [image, faces] : {std::pair{&gt.scene_flow, &all.scene_flow},
+                                {&gt.normal, &all.normal},
+                                {&gt.shading_normal, &all.shading_normal}})
+      if (!image->data.empty()) put_face(*faces, face, *image);
     if (!color_options) continue;
-    ColorLayers layers = renderer.color_layers(projection, frames, *color_options);
+    ColorLayers layers = renderer.color_layers(projection, request.pair, *color_options);
     ColorLayers& c = cube.color;
     put_face(c.direct, face, layers.direct), put_face(c.indirect, face, layers.indirect);
     put_face(c.specular, face, layers.specular), put_face(c.other, face, layers.other);

@@ -295,6 +295,21 @@ Image<T> resample_nearest(const Sampling& sampling, ImageView<const T> src) {
   return out;
 }
 
+Image<float> cube_to_erp_vectors(const CubeToErp& map, ImageView<const float> cube) {
+  require_source(map.sampling, cube, 3, "vector image");
+  Image<float> common(cube.width, cube.height, 3);
+  const Mat3 to_front = face_rotation(Face::Front).transpose();
+  for (Face face : kFaces) {
+    const Eigen::Matrix3f turn = (to_front * face_rotation(face)).cast<float>();
+    const ImageView<const float> from = face_view(cube, face);
+    const ImageView<float> to = face_view(common.view(), face);
+    for (std::size_t i = 0; i < from.pixel_count(); ++i)
+      Eigen::Map<Eigen::Vector3f>(to.data + 3 * i) =
+          turn * Eigen::Map<const Eigen::Vector3f>(from.data + 3 * i);
+  }
+  return resample_nearest(map.sampling, ImageView<const float>(common.view()));
+}
+
 #define FLOWSCAPE_RESAMPLE(T)                                               \
   template Image<T> resample_bilinear(const Sampling&, ImageView<const T>); \
   template Image<T> resample_nearest(const Sampling&, ImageView<const T>);

@@ -45,9 +45,9 @@ TEST_CASE("cube flow files round-trip and frames are listed in order without tem
   Image<float> flow(3, 18, 2);
   for (std::size_t i = 0; i < flow.data.size(); ++i) flow.data[i] = 0.25f * float(i) - 7;
   for (const char* name : {"000002.flo", "000000.flo", "000001.flo"})
-    write_cube_flow(dir.path, name, flow.view());
+    write_cube_flow(dir.path, "flow", name, flow.view());
   std::ofstream(dir.path / "front" / "flow" / ".partial-000003.flo") << "half";
-  CHECK(read_cube_flow(dir.path, "000001.flo").uv.data == flow.data);
+  CHECK(read_cube_flow(dir.path, "flow", "000001.flo").uv.data == flow.data);
   CHECK(cube_frame_files(dir.path, "flow") ==
         std::vector<std::string>{"000000.flo", "000001.flo", "000002.flo"});
   CHECK(cube_frame_files(dir.path, "color").empty());

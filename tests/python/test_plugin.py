@@ -265,8 +265,8 @@ def test_the_layout_in_the_manifest_finds_every_file_of_a_release(tiny_release):
     faces = layout.layout["faces"]
     assert faces == ["front", "right", "back", "left", "up", "down"]
     found = set()
-    for kind, row in layout.kinds.items():
-        for frame in range(3 - (1 if row["pairs_only"] else 0)):
+    for kind in layout.kinds:
+        for frame in filter(lambda f: layout.has_frame(kind, f, 3), range(3)):
             for face in [None] + faces:
                 path = layout.frame_file("map00_seq00", kind, frame, face)
                 assert os.path.isfile(path), path
@@ -284,3 +284,148 @@ def test_a_release_without_a_layout_is_named(tmp_path, yaw_release):
     (tmp_path / "manifest.json").write_text('{"generator": "flowscape 0.6", "files": {}}')
     with pytest.raises(ValueError, match="manifest.json: no layout"):
         flowscape.FlowScape(tmp_path, "train")
+
+
+@pytest.fixture(scope="session")
+def all_kinds_release(tmp_path_factory):
+    out = tmp_path_factory.mktemp("all_kinds")
+    subprocess.run([f"{BIN}/gen_flowscape", "--maps", "1", "--sequences-per-map", "2",
+                    "--frames", "4", "--resolution", "32", "--face-size", "16", "--spp", "1",
+                    "--vehicles", "30", "--pedestrians", "10", "--outputs", "all",
+                    "--flow-gaps", "1,2", "--out", str(out)], check=True, capture_output=True)
+    subprocess.run([f"{BIN}/flowscape_split", str(out)], check=True, capture_output=True)
+    return out
+
+
+def _bilinear(image, x, y, wrap):
+    """image H x W x C at continuous (x, y), pixel centres at +0.5; columns wrap on a panorama."""
+    h, w = image.shape[:2]
+    x, y = x - 0.5, np.clip(y - 0.5, 0, h - 1)
+    x0, y0 = np.floor(x).astype(int), np.minimum(y.astype(int), h - 1)
+    fx, fy = (x - x0)[..., None], (y - y0)[..., None]
+    y1 = np.minimum(y0 + 1, h - 1)
+    col = (lambda c: c % w) if wrap else (lambda c: np.clip(c, 0, w - 1))
+    return ((1 - fy) * ((1 - fx) * image[y0, col(x0)] + fx * image[y0, col(x0 + 1)])
+            + fy * ((1 - fx) * image[y1, col(x0)] + fx * image[y1, col(x0 + 1)]))
+
+
+def test_every_kind_of_the_layout_is_there_as_its_row_says(all_kinds_release):
+    layout = flowscape.ReleaseLayout(all_kinds_release)
+    assert layout.conventions["flow"]["value"] == "target - source"
+    assert {"flow_backward_gap2", "valid_gap2", "scene_flow", "normal", "normal_shading"} <= \
+        set(layout.kinds)
+    for kind, row in layout.kinds.items():
+        for frame in range(4):
+            path = layout.frame_file("map00_seq00", kind, frame)
+            assert os.path.isfile(path) == layout.has_frame(kind, frame, 4), path
+            if not os.path.isfile(path):
+                continue
+            data = io.read_flo(path) if row["resampling"] == "flow" else io.read_image(path)
+            assert data.shape == (32, 64, row["channels"]), kind
+    depth = io.read_image(layout.frame_file("map00_seq00", "depth", 1))[..., 0]
+    sky = np.isinf(depth)
+    assert sky.any() and not sky.all()
+    for kind in ("normal", "normal_shading", "scene_flow"):
+        value = io.read_image(layout.frame_file("map00_seq00", kind, 1))
+        assert np.isnan(value[sky]).all() and np.isfinite(value[~sky]).all(), kind
+    normal = io.read_image(layout.frame_file("map00_seq00", "normal", 1))[~sky]
+    assert np.abs(np.linalg.norm(normal, axis=1) - 1).max() < 1e-5
+    # the ERP camera frame is the front face's (x right, y down, z forward): the ground below the
+    # rig faces up, -y; and a normal faces the camera: against the pixel's ray
+    h, w = depth.shape
+    y, x = np.mgrid[0:h, 0:w] + 0.5
+    phi, theta = 2 * np.pi * x / w - np.pi, np.pi * y / h - np.pi / 2
+    ray = np.stack([np.cos(theta) * np.sin(phi), np.sin(theta), np.cos(theta) * np.cos(phi)], 2)
+    assert (np.einsum("ij,ij->i", normal, ray[~sky]) <= 1e-6).all()
+    bottom = io.read_image(layout.frame_file("map00_seq00", "normal", 1))[-1]
+    assert np.median(bottom[:, 1]) < -0.99
+
+
+def test_forward_and_backward_flow_of_a_release_agree(all_kinds_release):
+    layout = flowscape.ReleaseLayout(all_kinds_release)
+    for gap, back_kind, valid_kind in ((1, "flow_backward", "valid_backward"),
+                                       (2, "flow_backward_gap2", "valid_backward_gap2")):
+        forward = io.read_flo(layout.frame_file("map00_seq00", "flow" if gap == 1 else "flow_gap2", 0))
+        visible = io.read_image(layout.frame_file("map00_seq00", "valid" if gap == 1 else "valid_gap2", 0))[..., 0]
+        backward = io.read_flo(layout.frame_file("map00_seq00", back_kind, gap))
+        visible_back = io.read_image(layout.frame_file("map00_seq00", valid_kind, gap))[..., 0]
+        h, w = visible.shape
+        y, x = np.mgrid[0:h, 0:w] + 0.5
+        qx, qy = np.mod(x + forward[..., 0], w), y + forward[..., 1]
+        inside = (qy >= 0) & (qy < h)
+        both = (visible > 0) & inside
+        both[both] &= visible_back[np.minimum(qy[both].astype(int), h - 1), qx[both].astype(int)] > 0
+        back = _bilinear(backward, qx, qy, True)
+        du = forward[..., 0] + back[..., 0]
+        du -= w * np.round(du / w)
+        error = np.hypot(du, forward[..., 1] + back[..., 1])[both]
+        assert both.sum() > 0.5 * h * w
+        assert np.median(error) < 1e-3  # exact away from edges (bilinear sampling of B)
+
+
+def test_the_plugin_hands_out_the_kinds_asked_for(all_kinds_release):
+    data = flowscape.FlowScape(all_kinds_release, "train", outputs=("flow_backward", "normal"))
+    plain = flowscape.FlowScape(all_kinds_release, "train")
+    img1, img2, flow, valid, extra = data[0]
+    assert flow.shape == plain[0][2].shape  # the RAFT tuple is unchanged
+    assert extra["flow_backward"].shape == (2, 32, 64) and extra["normal"].shape == (3, 32, 64)
+    meta = data.sample(0)["meta"]
+    layout = flowscape.ReleaseLayout(all_kinds_release)
+    expected = io.read_flo(layout.frame_file(meta["scene"], "flow_backward", meta["frame"] + 1))
+    assert np.array_equal(extra["flow_backward"].numpy(), expected.transpose(2, 0, 1))
+    # a gap-2 flow exists for frames 0 and 1 of 4 only: fewer items
+    gap = flowscape.FlowScape(all_kinds_release, "train", outputs=("flow_gap2",))
+    assert 0 < len(gap) < len(plain)
+    with pytest.raises(ValueError, match="the release has no flow_gap4"):
+        flowscape.FlowScape(all_kinds_release, "train", outputs=("flow_gap4",))
+
+
+def _boxes_by_numpy(ids, panorama):
+    """[id, x0, y0, x1, y1] per instance, x1/y1 exclusive; on a panorama the fewest columns."""
+    boxes = []
+    w = ids.shape[1]
+    for value in np.unique(ids):
+        if value == 0:
+            continue
+        rows, cols = np.nonzero(ids == value)
+        used = np.zeros(w, bool)
+        used[cols] = True
+        x0, x1 = int(cols.min()), int(cols.max()) + 1
+        if panorama and not used.all():
+            # the longest run of empty columns round the circle is left out
+            empty = ~np.concatenate([used, used])
+            best, start = (0, 0), None
+            for i, e in enumerate(empty):
+                if e and start is None:
+                    start = i
+                if (not e or i == len(empty) - 1) and start is not None:
+                    end = i if not e else i + 1
+                    if end - start > best[1] - best[0] and end - start <= w:
+                        best = (start, end)
+                    start = None
+            x0, x1 = best[1] % w, best[0] % w or w
+        elif panorama:
+            x0, x1 = 0, w
+        boxes.append([int(value), x0, int(rows.min()), x1, int(rows.max()) + 1])
+    return boxes
+
+
+def test_meta_json_boxes_and_actors_match_the_files(all_kinds_release):
+    layout = flowscape.ReleaseLayout(all_kinds_release)
+    for scene in ("map00_seq00", "map00_seq01"):
+        meta = layout.meta(scene)
+        for view, face in [("erp", None)] + [(f"cube/{f}", f) for f in layout.layout["faces"]]:
+            for frame in range(4):
+                ids = io.read_image(layout.frame_file(scene, "instance", frame, face))[..., 0]
+                assert meta["boxes_2d"][view][frame] == _boxes_by_numpy(ids, face is None)
+        poses = [np.vstack([np.array(p).reshape(3, 4), [0, 0, 0, 1]]) for p in meta["poses"]]
+        assert len(meta["actors"]) == 40
+        for actor in meta["actors"]:
+            for frame in range(4):
+                centre = np.array(actor["centre"][frame] + [1])
+                in_rig = np.linalg.inv(poses[frame]) @ centre
+                assert np.abs(in_rig[:3] - actor["centre_rig"][frame]).max() < 1e-5
+        front = meta["views"]["cube/front"]
+        assert front["K"] == [[8.0, 0, 7.5], [0, 8.0, 7.5], [0, 0, 1]]
+    card = (all_kinds_release / "README.md").read_text()
+    assert "| scene_flow | all but the last 1 |" in card and "bytes per frame" in card

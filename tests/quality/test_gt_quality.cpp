@@ -5,6 +5,8 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/quality/flow_datasets.h"
 #include "flowscape/quality/gt_quality.h"
+#include "flowscape/core/files.h"
+#include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
 #include "shifted_pattern.h"
 #include "temp_dir.h"
@@ -89,4 +91,36 @@ TEST_CASE("corrupt files stop the evaluation with the file named") {
   std::ofstream(data / "00001_img2.ppm") << "P6 garbage";
   CHECK_THROWS_WITH(evaluate_quality(find_flow_dataset(dir.path), {{}, false}),
                     Catch::Contains("00001_img2.ppm"));
+}
+
+TEST_CASE("a release's manifest says which kinds and conventions gt_quality reads") {
+  TempDir dir;
+  const Image<std::uint8_t> a = to8(image_of(0, 0)), b = to8(image_of(1, 0));
+  Image<std::uint8_t> ones(W, H, 1);
+  std::fill(ones.data.begin(), ones.data.end(), 1);
+  const fs::path root = dir.path / "release", seq = root / "sequences" / "map00_seq00";
+  SequenceMeta meta;
+  meta.scene = "map00_seq00", meta.weather = {{"preset", "fog"}}, meta.frames = 2;
+  write_meta(seq, meta);
+  write_image(seq / "erp/color/000000.png", a), write_image(seq / "erp/color/000001.png", b);
+  write_flow(seq / "erp/flow/000000.flo", constant_flow(1, 0).view(), ones.view());
+  write_image(seq / "erp/valid/000000.png", ones);
+  write_flow(seq / "erp/flow_backward/000001.flo", constant_flow(-1, 0).view(), ones.view());
+  write_image(seq / "erp/valid_backward/000001.png", ones);
+  nlohmann::json manifest = {{"layout", layout_json(Layout::of({"flow_backward"}, {1}, false))},
+                             {"conventions", conventions_json()}};
+  write_text(root / "manifest.json", manifest.dump());
+  const FlowDataset found = find_flow_dataset(root);
+  REQUIRE(found.pairs.size() == 1);
+  CHECK(found.pairs[0].backward == seq / "erp/flow_backward/000001.flo");
+  const QualityReport report = evaluate_quality(found, {{}, false});
+  CHECK(report.rows[0].round_trip_pairs == 1);
+  CHECK(report.rows[0].both_ways == long(W) * H);  // a panorama: every target wraps in
+  CHECK(report.rows[0].round_trip_share() == 1);
+  CHECK(report_table(report).find("100.00%") != std::string::npos);
+  // flow a program could not read as gt_quality does is refused, naming the manifest
+  manifest["conventions"]["flow"]["value"] = "source - target";
+  write_text(root / "manifest.json", manifest.dump());
+  CHECK_THROWS_WITH(find_flow_dataset(root),
+                    Catch::Contains("manifest.json: conventions: flow is not target - source"));
 }

@@ -42,13 +42,15 @@ TEST_CASE("merged shards give the manifest one process writes, with every file's
   fs::copy(sharded / "sequences", single / "sequences", fs::copy_options::recursive);
   const ReleaseWritten written = write_release(config, single);
   CHECK(written.manifest == single / "manifest.json");
-  // per sequence: meta.json, 7 views x (6 kinds of frame 0 + 4 of the last frame)
-  CHECK((written.sequences == 2 && written.frames == 4 && written.files == 2 * (1 + 7 * (6 + 4))));
+  // per sequence: meta.json, 7 views x (6 kinds of frame 0 + 4 and the 2 backward of the last)
+  CHECK((written.sequences == 2 && written.frames == 4 &&
+         written.files == 2 * (1 + 7 * (6 + 4 + 2))));
   CHECK(file_bytes(sharded / "manifest.json") == file_bytes(single / "manifest.json"));
 
   const nlohmann::json manifest = read_json(single / "manifest.json");
   CHECK(manifest["generator"] == kGeneratorVersion);
-  CHECK(manifest["layout"] == layout_json());
+  CHECK(manifest["layout"] == layout_json(release_layout(config)));
+  CHECK(manifest["conventions"]["flow"]["value"] == "target - source");
   CHECK(manifest["counts"]["flow_pairs"] == 2);
   const std::string color = "sequences/map00_seq01/erp/color/000001.png";
   CHECK(manifest["files"][color]["sha256"] == sha256_file(single / color));
@@ -57,7 +59,7 @@ TEST_CASE("merged shards give the manifest one process writes, with every file's
   // every file of every frame is listed
   for (const SequencePlan& plan : plan_sequences(config))
     for (int f = 0; f < 2; ++f)
-      for (const fs::path& file : frame_files(f, 2, true))
+      for (const fs::path& file : release_layout(config).frame_files(f, 2))
         REQUIRE(manifest["files"].contains(
             fs::relative(sequence_dir(single, plan.name) / file, single).generic_string()));
 }

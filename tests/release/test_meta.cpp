@@ -59,3 +59,39 @@ TEST_CASE("a missing or broken meta.json is named") {
   bad["poses"][0] = {1, 2, 3};
   CHECK_THROWS_WITH(meta_from_json(bad), Catch::Contains("12 numbers"));
 }
+
+TEST_CASE("2-D boxes span each instance's pixels; on a panorama the short way round the seam") {
+  Image<std::uint16_t> ids(16, 4, 1);
+  const auto paint = [&](std::uint16_t id, int x0, int x1, int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) *ids.pixel(x % 16, y) = id;
+  };
+  paint(3, 2, 5, 1, 3);    // columns 2..4, rows 1..2
+  paint(9, 14, 18, 0, 1);  // columns 14, 15, 0, 1: across the seam
+  paint(5, 7, 8, 3, 4);
+  paint(5, 12, 13, 0, 1);  // one instance in two places
+  std::vector<InstanceBox> boxes = instance_boxes(ids.view(), true);
+  REQUIRE(boxes.size() == 3);
+  const auto same = [](const InstanceBox& b, int id, int x0, int y0, int x1, int y1) {
+    return b.instance == id && b.x0 == x0 && b.y0 == y0 && b.x1 == x1 && b.y1 == y1;
+  };
+  CHECK(same(boxes[0], 3, 2, 1, 5, 3));
+  CHECK(same(boxes[1], 5, 7, 0, 13, 4));
+  CHECK(same(boxes[2], 9, 14, 0, 2, 1));  // x1 <= x0: wraps
+  boxes = instance_boxes(ids.view(), false);  // a pinhole image does not wrap
+  CHECK(same(boxes[2], 9, 0, 0, 16, 1));
+  paint(9, 0, 16, 2, 3);  // all the way round
+  CHECK(same(instance_boxes(ids.view(), true)[2], 9, 0, 0, 16, 3));
+}
+
+TEST_CASE("views record each camera's K and pose in the rig") {
+  const nlohmann::json views = views_json(16, 8);
+  CHECK(views["erp"]["width"] == 32);
+  CHECK(views["erp"]["model"] == "equirectangular");
+  const nlohmann::json& front = views["cube/front"];
+  CHECK(front["K"] == nlohmann::json{{4.0, 0, 3.5}, {0, 4.0, 3.5}, {0, 0, 1}});
+  // the front camera's z (forward) is the rig's x, its x (right) the rig's -y
+  CHECK(front["camera_to_rig"] == nlohmann::json{{0.0, 0.0, 1.0}, {-1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}});
+  CHECK(views["cube/up"]["camera_to_rig"][2][2] == 1.0);  // looks along the rig's z
+  CHECK_FALSE(views_json(16, 0).contains("cube/front"));
+}

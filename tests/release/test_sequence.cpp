@@ -39,3 +39,67 @@ TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json re
   CHECK(meta.poses[2].matrix() == s.frame_pair(2).rig.matrix());
   CHECK(meta.face_size == 8);
 }
+
+TEST_CASE("every actor's recorded box holds its vertices and its velocity is its poses' change") {
+  const ReleaseConfig config = tiny_release_config(1, 12);
+  const Sequence s = make_sequence(sequence_spec(config, plan_sequences(config).front()));
+  const nlohmann::json actors = actor_records(s, config.frames);
+  REQUIRE(actors.size() == s.city.actors.size());
+  REQUIRE(actors.size() == std::size_t(config.vehicles + config.pedestrians));
+  const double h = 1 / kFrameRate;
+  int moving = 0;
+  for (std::size_t a = 0; a < actors.size(); ++a) {
+    const nlohmann::json& record = actors[a];
+    const Actor& actor = s.city.scene.actors[a];
+    CHECK(record["instance"] == actor.instance);
+    for (int f = 1; f + 1 < config.frames; ++f) {
+      const double t = f * h;
+      const auto column = [&](const char* key) {
+        const std::vector<double> v = record[key][std::size_t(f)];
+        return Vec3(v[0], v[1], v[2]);
+      };
+      const std::vector<double> q = record["rotation"][std::size_t(f)];
+      const Eigen::Quaterniond rotation(q[0], q[1], q[2], q[3]);
+      const Vec3 centre = column("centre"), half = column("size") / 2;
+      // every vertex of every part, posed at t, lies in the box (to the record's rounding)
+      for (const Part& part : actor.parts)
+        for (const Eigen::Vector3f& vertex : part.mesh.vertices) {
+          const Vec3 world = actor.pose(t) * (part.pose(t) * vertex.cast<double>());
+          const Vec3 in_box = rotation.conjugate() * (world - centre);
+          REQUIRE((in_box.cwiseAbs() - half).maxCoeff() < 1e-5);
+        }
+      // the heading is the yaw of the box's x axis
+      const Vec3 x_axis = rotation * Vec3::UnitX();
+      CHECK(double(record["heading"][std::size_t(f)]) ==
+            Approx(std::atan2(x_axis.y(), x_axis.x())).margin(2e-6));
+      // velocity: the box centre, carried by the actor's poses one frame either way
+      const Vec3 local = actor.pose(t).inverse() * centre;
+      const Vec3 finite = (actor.pose(t + h) * local - actor.pose(t - h) * local) / (2 * h);
+      CHECK((column("velocity") - finite).norm() < 0.05);
+      const double yaw_rate = Eigen::AngleAxisd(actor.pose(t + h).linear() *
+                                                actor.pose(t - h).linear().transpose())
+                                  .angle() /
+                              (2 * h);
+      CHECK(column("angular_velocity").norm() == Approx(yaw_rate).margin(0.01));
+      // the rig frame's box is the world's seen from the rig then
+      const Vec3 in_rig = s.city.rig(t).inverse() * centre;
+      CHECK((column("centre_rig") - in_rig).norm() < 1e-5);
+      moving += finite.norm() > 1;
+    }
+  }
+  CHECK(moving > 0);
+}
+
+TEST_CASE("a frame's truth request has a target per flow step of its layout") {
+  const ReleaseConfig config = tiny_release_config(1, 6);
+  const Sequence s = make_sequence(sequence_spec(config, plan_sequences(config).front()));
+  const Layout layout = Layout::of({"flow_backward", "scene_flow", "normal"}, {1, 2}, true);
+  const TruthPlan middle = truth_plan(s, layout, 2, 6);
+  CHECK(middle.steps == std::vector<int>{2, -1, -2});
+  REQUIRE(middle.request.more.size() == 3);
+  CHECK(middle.request.more[0].time == Approx(4 / 30.0));
+  CHECK(middle.request.more[2].rig.matrix() == s.city.rig(0).matrix());
+  CHECK((middle.request.scene_flow && middle.request.normal && !middle.request.shading_normal));
+  CHECK(truth_plan(s, layout, 5, 6).steps == std::vector<int>{-1, -2});
+  CHECK(truth_plan(s, layout, 0, 6).steps == std::vector<int>{2});
+}

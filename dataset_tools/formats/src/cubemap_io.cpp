@@ -66,16 +66,17 @@ Image<T> read_cube_image_as(const std::filesystem::path& cube_dir, const std::st
   return read_cube_typed<T>(cube_dir, modality, file_name);
 }
 
-Flow read_cube_flow(const std::filesystem::path& cube_dir, const std::string& file_name) {
+Flow read_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
+                    const std::string& file_name) {
   std::array<Image<float>, 6> uv;
   std::array<Image<std::uint8_t>, 6> valid;
   for (Face face : kFaces) {
-    Flow flow = read_flow(cube_file(cube_dir, face, "flow", file_name));
+    Flow flow = read_flow(cube_file(cube_dir, face, modality, file_name));
     uv[int(face)] = std::move(flow.uv);
     valid[int(face)] = std::move(flow.valid);
   }
-  return {stack_faces(uv, cube_dir, "flow", file_name),
-          stack_faces(valid, cube_dir, "flow", file_name)};
+  return {stack_faces(uv, cube_dir, modality, file_name),
+          stack_faces(valid, cube_dir, modality, file_name)};
 }
 
 template <class T>
@@ -85,10 +86,11 @@ void write_cube_image(const std::filesystem::path& cube_dir, const std::string& 
     write_image(cube_file(cube_dir, face, modality, file_name), face_view(stack, face));
 }
 
-void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& file_name,
+void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
+                     const std::string& file_name,
                      ImageView<const float> stack) {
   for (Face face : kFaces)
-    write_flow(cube_file(cube_dir, face, "flow", file_name), face_view(stack, face));
+    write_flow(cube_file(cube_dir, face, modality, file_name), face_view(stack, face));
 }
 
 std::vector<std::string> cube_frame_files(const std::filesystem::path& cube_dir,

@@ -38,21 +38,57 @@ fs::path with_stem_suffix(const fs::path& file, const std::string& from, const s
   return file.parent_path() / name;
 }
 
-// The ERP pairs of every sequence whose flow file exists (a release may be unfinished).
+// What gt_quality reads a flow as: target - source in pixels, u right, v down (photoconsistency.h).
+void check_conventions(const nlohmann::json& conventions, const fs::path& manifest) {
+  if (conventions.is_null()) return;  // before conventions were recorded: FlowScape's
+  const nlohmann::json flow = conventions.is_object() ? conventions.value("flow", nlohmann::json())
+                                                      : nlohmann::json();
+  const auto says = [&](const char* key, const char* value) {
+    return flow.is_object() && flow.value(key, "") == value;
+  };
+  if (!says("value", "target - source") || !says("units", "pixels") || !says("u", "right") ||
+      !says("v", "down") || !(says("erp_seam", "360") || says("erp_seam", "classic")))
+    throw FileError(manifest, "conventions: flow is not target - source in pixels with u right, "
+                              "v down and a 360 or classic seam; gt_quality cannot score it");
+}
+
+// The layout a release states (checking its conventions), or FlowScape's six without a manifest.
+Layout release_layout_of(const fs::path& root) {
+  const fs::path manifest = root / kManifestFile;
+  if (!fs::exists(manifest)) return flowscape_layout(true);
+  const nlohmann::json json = read_json(manifest);
+  try {
+    check_conventions(json.value("conventions", nlohmann::json()), manifest);
+    return layout_from_json(json.value("layout", nlohmann::json()));
+  } catch (const std::invalid_argument& e) {
+    throw FileError(manifest, std::string("layout: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(manifest, std::string("not a FlowScape manifest: ") + e.what());
+  }
+}
+
+// The ERP pairs of every sequence whose flow file exists (a release may be unfinished), with the
+// backward flow of each pair's second frame where the release has it.
 FlowDataset flowscape_release(const fs::path& root) {
   FlowDataset d{"flowscape", {}};
-  const OutputKind &color = output_kind("color"), &flow = output_kind("flow"),
-                   &valid = output_kind("valid");
+  const Layout layout = release_layout_of(root);
+  const bool backward = layout.has("flow_backward") && layout.has("valid_backward");
+  const ReleaseKind color = output_kind("color"), flow = output_kind("flow"),
+                    valid = output_kind("valid"), back = output_kind("flow_backward"),
+                    back_valid = output_kind("valid_backward");
   for (const fs::path& seq : sorted_dirs(sequence_dir(root, ""))) {
     const SequenceMeta meta = read_meta(seq);
-    for (int f = 0; has_frame(flow, f, meta.frames); ++f) {
-      const auto file = [&](const OutputKind& kind, int frame) {
+    for (int f = 0; flow.has_frame(f, meta.frames); ++f) {
+      const auto file = [&](const ReleaseKind& kind, int frame) {
         return seq / frame_file(kind, std::nullopt, frame);
       };
       if (!fs::exists(file(flow, f))) continue;
-      d.pairs.push_back({file(color, f), file(color, f + 1), file(flow, f), file(valid, f),
-                         VisibleMask::NonZero, seq.filename().string(), meta.weather_preset(),
-                         true});
+      PairFiles pair{file(color, f),         file(color, f + 1),    file(flow, f),
+                     file(valid, f),         VisibleMask::NonZero,  seq.filename().string(),
+                     meta.weather_preset(), true};
+      if (backward)
+        pair.backward = file(back, f + 1), pair.backward_visible = file(back_valid, f + 1);
+      d.pairs.push_back(pair);
     }
   }
   return d;

@@ -4,12 +4,14 @@
 
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "flowscape/core/progress.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/quality/photoconsistency.h"
+#include "flowscape/quality/round_trip.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
@@ -57,7 +59,25 @@ Image<std::uint8_t> visible_mask(const PairFiles& pair) {
   return {};
 }
 
-PairErrors evaluate_pair(const PairFiles& pair, const QualityOptions& options) {
+struct PairResult {
+  PairErrors errors;
+  std::optional<RoundTrip> trip;
+};
+
+// The pair's forward flow against its second frame's backward flow (round_trip.h).
+RoundTrip check_round_trip(const PairFiles& pair, const Flow& forward,
+                           const Image<std::uint8_t>& visible) {
+  const Flow backward = read_flow(pair.backward);
+  const Image<std::uint8_t> back_visible = read_image<std::uint8_t>(pair.backward_visible);
+  if (backward.uv.width != forward.uv.width || backward.uv.height != forward.uv.height)
+    throw FileError(pair.backward, "backward flow's size differs from the forward flow's");
+  if (back_visible.width != forward.uv.width || back_visible.height != forward.uv.height)
+    throw FileError(pair.backward_visible, "mask size differs from the flow's");
+  return round_trip({forward.uv.view(), visible.view(), backward.uv.view(), back_visible.view(),
+                     pair.panorama});
+}
+
+PairResult evaluate_pair(const PairFiles& pair, const QualityOptions& options) {
   const Image<std::uint8_t> image1 = intensities(pair.image1), image2 = intensities(pair.image2);
   const Flow flow = read_flow(pair.flow);
   const Image<std::uint8_t> visible = visible_mask(pair);
@@ -73,26 +93,35 @@ PairErrors evaluate_pair(const PairFiles& pair, const QualityOptions& options) {
     throw FileError(pair.visible, "mask size differs from the images'");
   PairImages images{image1.view(),     image2.view(),  flow.uv.view(),
                     flow.valid.view(), visible.view(), pair.panorama};
-  if (options.error_images.empty()) return photo_errors(images);
+  PairResult result;
+  if (!pair.backward.empty()) result.trip = check_round_trip(pair, flow, visible);
+  if (options.error_images.empty()) {
+    result.errors = photo_errors(images);
+    return result;
+  }
   Image<float> error;
-  const PairErrors errors = photo_errors(images, &error);
+  result.errors = photo_errors(images, &error);
   Image<std::uint8_t> png(error.width, error.height, 1);
   for (std::size_t i = 0; i < png.pixel_count(); ++i)
     png.data[i] = std::uint8_t(std::min(255.0f, error.data[i] + 0.5f));
   write_image(options.error_images /
                   (pair.category + "_" + pair.group + "_" + pair.flow.stem().string() + ".png"),
               png);
-  return errors;
+  return result;
 }
 
-void add(QualityRow& row, const PairErrors& e, bool has_visible) {
+void add(QualityRow& row, const PairResult& r, bool has_visible) {
+  const PairErrors& e = r.errors;
   ++row.pairs, row.pe += e.pe, row.wpe += e.wpe;
-  if (has_visible) ++row.visible_pairs, row.wpe_visible += e.wpe_visible;
+  if (has_visible)
+    ++row.visible_pairs, row.wpe_visible += e.wpe_visible, row.wpe_occluded += e.wpe_occluded;
+  if (r.trip)
+    ++row.round_trip_pairs, row.both_ways += r.trip->both_ways, row.returned += r.trip->returned;
 }
 
 void finish(QualityRow& row) {
   if (row.pairs) row.pe /= row.pairs, row.wpe /= row.pairs;
-  if (row.visible_pairs) row.wpe_visible /= row.visible_pairs;
+  if (row.visible_pairs) row.wpe_visible /= row.visible_pairs, row.wpe_occluded /= row.visible_pairs;
   row.diff = diff_percent(row.pe, row.wpe);
 }
 
@@ -100,7 +129,7 @@ void finish(QualityRow& row) {
 
 QualityReport evaluate_quality(const FlowDataset& dataset, const QualityOptions& options) {
   if (!options.error_images.empty()) fs::create_directories(options.error_images);
-  std::vector<PairErrors> errors(dataset.pairs.size());
+  std::vector<PairResult> errors(dataset.pairs.size());
   std::unique_ptr<Progress> progress;
   if (options.progress) progress = std::make_unique<Progress>("gt_quality", errors.size(), "pairs");
   tbb::parallel_for(std::size_t(0), errors.size(), [&](std::size_t k) {
@@ -134,17 +163,32 @@ QualityReport evaluate_quality(const FlowDataset& dataset, const QualityOptions&
   return report;
 }
 
+namespace {
+
+// "-" where a row has no such measure.
+std::string measure(bool has, double value, const char* format) {
+  if (!has) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+}  // namespace
+
 std::string report_table(const QualityReport& report) {
   std::ostringstream out;
-  char line[256];
-  std::snprintf(line, sizeof line, "%-36s %6s %8s %8s %8s  %-10s %10s\n", report.layout.c_str(),
-                "pairs", "PE", "WPE", "Diff", "quality", "WPE (noc)");
+  char line[320];
+  std::snprintf(line, sizeof line, "%-36s %6s %8s %8s %8s  %-10s %10s %10s %8s\n",
+                report.layout.c_str(), "pairs", "PE", "WPE", "Diff", "quality", "WPE (noc)",
+                "WPE (occ)", "FB ok");
   out << line;
   for (const QualityRow& r : report.rows) {
-    char visible[32] = "-";
-    if (r.visible_pairs) std::snprintf(visible, sizeof visible, "%.2f", r.wpe_visible);
-    std::snprintf(line, sizeof line, "%-36s %6d %8.2f %8.2f %7.1f%%  %-10s %10s\n", r.name.c_str(),
-                  r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff), visible);
+    const std::string noc = measure(r.visible_pairs, r.wpe_visible, "%.2f"),
+                      occ = measure(r.visible_pairs, r.wpe_occluded, "%.2f"),
+                      trip = measure(r.round_trip_pairs, 100 * r.round_trip_share(), "%.2f%%");
+    std::snprintf(line, sizeof line, "%-36s %6d %8.2f %8.2f %7.1f%%  %-10s %10s %10s %8s\n",
+                  r.name.c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff),
+                  noc.c_str(), occ.c_str(), trip.c_str());
     out << line;
   }
   return out.str();
@@ -156,7 +200,12 @@ nlohmann::json report_json(const QualityReport& report) {
     nlohmann::json row = {
         {"name", r.name}, {"pairs", r.pairs},       {"pe", r.pe},
         {"wpe", r.wpe},   {"diff_percent", r.diff}, {"quality", quality_label(r.diff)}};
-    if (r.visible_pairs) row["wpe_noc"] = r.wpe_visible;
+    if (r.visible_pairs) row["wpe_noc"] = r.wpe_visible, row["wpe_occ"] = r.wpe_occluded;
+    if (r.round_trip_pairs)
+      row["round_trip"] = {{"pairs", r.round_trip_pairs},
+                           {"visible_both_ways", r.both_ways},
+                           {"returned", r.returned},
+                           {"share", r.round_trip_share()}};
     rows.push_back(row);
   }
   return {{"layout", report.layout}, {"rows", rows}};
@@ -164,11 +213,15 @@ nlohmann::json report_json(const QualityReport& report) {
 
 std::string report_csv(const QualityReport& report) {
   std::ostringstream out;
-  out << "name,pairs,pe,wpe,diff_percent,quality,wpe_noc\n";
+  out << "name,pairs,pe,wpe,diff_percent,quality,wpe_noc,wpe_occ,round_trip_share\n";
   for (const QualityRow& r : report.rows) {
     out << r.name << "," << r.pairs << "," << r.pe << "," << r.wpe << "," << r.diff << ","
         << quality_label(r.diff) << ",";
     if (r.visible_pairs) out << r.wpe_visible;
+    out << ",";
+    if (r.visible_pairs) out << r.wpe_occluded;
+    out << ",";
+    if (r.round_trip_pairs) out << r.round_trip_share();
     out << "\n";
   }
   return out.str();

@@ -9,8 +9,8 @@ namespace flowscape {
 namespace {
 
 struct Sums {
-  double pe = 0, wpe = 0, wpe_visible = 0;
-  long pixels = 0, visible = 0;
+  double pe = 0, wpe = 0, wpe_visible = 0, wpe_occluded = 0;
+  long pixels = 0, visible = 0, occluded = 0;
 };
 
 int floor_int(float v) {  // std::floor without a libm call
@@ -27,7 +27,7 @@ void row_errors(const PairImages& p, int y, Sums& sums, float* warp_error) {
   const std::uint8_t *a = p.image1.pixel(0, y), *b = p.image2.pixel(0, y);
   const std::uint8_t* known = p.known.data ? p.known.pixel(0, y) : nullptr;
   const std::uint8_t* visible = p.visible.data ? p.visible.pixel(0, y) : nullptr;
-  float pe = 0, wpe = 0, wpe_visible = 0;
+  float pe = 0, wpe = 0, wpe_visible = 0, wpe_occluded = 0;
   for (int x = 0; x < W; ++x) {
     const float u = flow[2 * x], v = flow[2 * x + 1];
     if ((known && !known[x]) || !is_known_flow(u, v)) continue;
@@ -58,9 +58,11 @@ void row_errors(const PairImages& p, int y, Sums& sums, float* warp_error) {
     photo *= 1.0f / C, warped *= 1.0f / C;
     pe += photo, wpe += warped, ++sums.pixels;
     if (visible && visible[x]) wpe_visible += warped, ++sums.visible;
+    if (visible && !visible[x]) wpe_occluded += warped, ++sums.occluded;
     if (warp_error) warp_error[x] = warped;
   }
   sums.pe += pe, sums.wpe += wpe, sums.wpe_visible += wpe_visible;
+  sums.wpe_occluded += wpe_occluded;
 }
 
 void check_sizes(const PairImages& p) {
@@ -93,8 +95,13 @@ PairErrors photo_errors(const PairImages& p, Image<float>* warp_error) {
       throw std::invalid_argument("images need 1 or 3 channels");
   }
   const auto mean = [](double sum, long n) { return n ? sum / double(n) : 0.0; };
-  return {mean(sums.pe, sums.pixels), mean(sums.wpe, sums.pixels),
-          mean(sums.wpe_visible, sums.visible), sums.pixels, sums.visible};
+  return {mean(sums.pe, sums.pixels),
+          mean(sums.wpe, sums.pixels),
+          mean(sums.wpe_visible, sums.visible),
+          mean(sums.wpe_occluded, sums.occluded),
+          sums.pixels,
+          sums.visible,
+          sums.occluded};
 }
 
 double diff_percent(double pe, double wpe) { return pe > 0 ? 100 * (pe - wpe) / pe : 0; }

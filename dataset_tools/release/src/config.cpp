@@ -29,13 +29,20 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("denoise", c.denoise);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("cube", c.cube), visit("models", c.models);
+  visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps);
 }
 
 template <class T>
 T checked_value(const nlohmann::json& value, const char* key) {
   if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>)
     return json_integer<T>(value, key);
-  else
+  else if constexpr (std::is_same_v<T, std::vector<int>>) {
+    if (!value.is_array())
+      throw std::invalid_argument("\"" + std::string(key) + "\" must be a list of integers");
+    T numbers;
+    for (const nlohmann::json& number : value) numbers.push_back(json_integer<int>(number, key));
+    return numbers;
+  } else
     return value.get<T>();
 }
 
@@ -60,9 +67,22 @@ void validate(const ReleaseConfig& c) {
     kind_from_name(kind);
     if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");
   }
+  try {
+    release_layout(c);
+  } catch (const std::invalid_argument& e) {
+    require(false, e.what());
+  }
+  for (int gap : c.flow_gaps)
+    require(gap < c.frames, "flow gap " + std::to_string(gap) + " needs more than " +
+                                std::to_string(gap) + " frames (the release has " +
+                                std::to_string(c.frames) + ")");
   require(c.shards >= 1 && c.shard >= 0 && c.shard < c.shards, "shard K/N needs 0 <= K < N (got " +
                                                                    std::to_string(c.shard) + "/" +
                                                                    std::to_string(c.shards) + ")");
+}
+
+Layout release_layout(const ReleaseConfig& c) {
+  return Layout::of(c.outputs, c.flow_gaps, c.cube);
 }
 
 std::string config_differences(const nlohmann::json& first, const std::string& first_name,

@@ -37,7 +37,32 @@ void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
     md << "| " << weather << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
 }
 
-void sizes_section(std::ostringstream& md, const ReleaseConfig& c) {
+// Mean bytes per frame of each kind of the release (all views), from its files on disk.
+std::map<std::string, double> bytes_per_frame(const fs::path& out, const ReleaseConfig& c) {
+  const Layout layout = release_layout(c);
+  const std::vector<SequencePlan> plans = plan_sequences(c);
+  std::map<std::string, double> bytes;
+  for (const SequencePlan& plan : plans)
+    for (int f = 0; f < c.frames; ++f)
+      for (const fs::path& file : layout.frame_files(f, c.frames)) {
+        const fs::path path = sequence_dir(out, plan.name) / file;
+        if (fs::exists(path)) bytes[file.parent_path().filename().string()] += fs::file_size(path);
+      }
+  for (auto& [kind, sum] : bytes) sum /= double(plans.size()) * c.frames;
+  return bytes;
+}
+
+std::string with_unit(double bytes) {
+  std::ostringstream text;
+  text.precision(3);
+  if (bytes >= 1 << 20)
+    text << bytes / (1 << 20) << " MiB";
+  else
+    text << bytes / 1024 << " KiB";
+  return text.str();
+}
+
+void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::path& out) {
   md << "\n## Sizes\n\n- ERP: " << c.height << " x " << 2 * c.height << " (H x W), " << c.frames
      << " frames at " << kFrameRate << " Hz\n";
   if (c.cube)
@@ -48,10 +73,36 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c) {
      << std::min(c.indirect_spp, c.spp) << " of them gathering indirect light), "
      << (c.denoise == "none" ? "not denoised"
                              : "denoised (a-trous, guided by albedo, normal, depth, instance)")
-     << "\n";
-  for (const OutputKind& kind : kOutputKinds)
-    md << "- " << kind.name << ": " << kind.description
-       << (kind.pairs_only ? " (every frame but the last)" : "") << "\n";
+     << "\n\n## Output kinds\n\nEach kind is a folder of every view (the ERP"
+     << (c.cube ? " and each face" : "")
+     << "); bytes per frame are the mean over the release, all views together. The six kinds "
+        "every release has come first; `--outputs` picks more (this release: "
+     << (c.outputs.empty() ? std::string("none") : nlohmann::json(c.outputs).dump())
+     << ", flow gaps " << nlohmann::json(c.flow_gaps).dump()
+     << "; gen_flowscape's default: " << nlohmann::json(ReleaseConfig{}.outputs).dump()
+     << ", chosen by their cost in bench_render).\n\n"
+        "| kind | frames | bytes per frame | what it holds |\n| --- | --- | --- | --- |\n";
+  const std::map<std::string, double> bytes = bytes_per_frame(out, c);
+  double total = 0;
+  for (const ReleaseKind& kind : release_layout(c).kinds) {
+    const double size = bytes.count(kind.folder()) ? bytes.at(kind.folder()) : 0;
+    total += size;
+    const int step = kind.step();
+    md << "| " << kind.name() << " | "
+       << (step > 0   ? "all but the last " + std::to_string(step)
+           : step < 0 ? "all but the first " + std::to_string(-step)
+                      : std::string("all"))
+       << " | " << with_unit(size) << " | " << kind.row->description
+       << (kind.gap > 1 ? " (gap " + std::to_string(kind.gap) + ")" : "") << " |\n";
+  }
+  md << "| all | | " << with_unit(total) << " | |\n";
+}
+
+void conventions_section(std::ostringstream& md) {
+  md << "\n## Conventions\n\nAs `" << kManifestFile
+     << "` states them for programs (`conventions`); each kind's `step` in its `layout` says which "
+        "frame a flow goes to.\n\n```json\n"
+     << conventions_json().dump(1) << "\n```\n";
 }
 
 void classes_section(std::ostringstream& md) {
@@ -63,29 +114,32 @@ void classes_section(std::ostringstream& md) {
   }
 }
 
-void layout_section(std::ostringstream& md) {
+void layout_section(std::ostringstream& md, const ReleaseConfig& c) {
   std::string erp, cube;
-  for (const OutputKind& kind : kOutputKinds) {
-    if (kind.erp) erp.append(erp.empty() ? "" : ",").append(kind.folder);
-    if (kind.cube) cube.append(cube.empty() ? "" : ",").append(kind.folder);
+  for (const ReleaseKind& kind : release_layout(c).kinds) {
+    if (kind.row->erp) erp.append(erp.empty() ? "" : ",").append(kind.folder());
+    if (kind.row->cube) cube.append(cube.empty() ? "" : ",").append(kind.folder());
   }
   const fs::path sequence = sequence_dir("", "<map>_<seq>");
   md << "\n## Layout\n\n```\n"
-     << (sequence / kMetaFile).generic_string() << "      map, weather, seed, poses, actors\n"
-     << (sequence / view_dir(std::nullopt)).generic_string() << "/{" << erp << "}/<frame>\n"
-     << (sequence / kCubeDir).generic_string() << "/<face>/{" << cube << "}/<frame>\n"
-     << "splits/, panoflow/                    written by flowscape_split\n```\n";
+     << (sequence / kMetaFile).generic_string()
+     << "      map, weather, seed, poses, calibration, actors, 2-D boxes\n"
+     << (sequence / view_dir(std::nullopt)).generic_string() << "/{" << erp << "}/<frame>\n";
+  if (c.cube) md << (sequence / kCubeDir).generic_string() << "/<face>/{" << cube << "}/<frame>\n";
+  md << "splits/, panoflow/                    written by flowscape_split\n```\n";
 }
 
-std::string card_text(const ReleaseConfig& c, const std::vector<std::string>& examples) {
+std::string card_text(const ReleaseConfig& c, const fs::path& out,
+                      const std::vector<std::string>& examples) {
   std::ostringstream md;
   md << "# FlowScape release\n\nSynthetic panoramic optical flow in procedural city maps, made by `"
      << kGeneratorVersion << "` (the FlowScape toolkit), after the FlowScape dataset of the "
      << "PanoFlow paper. Every file is listed with its sha256 in `" << kManifestFile << "`.\n\n";
   counts_section(md, c);
-  sizes_section(md, c);
+  sizes_section(md, c, out);
+  conventions_section(md);
   classes_section(md);
-  layout_section(md);
+  layout_section(md, c);
   md << "\n## Examples\n\n";
   for (const std::string& weather : examples)
     md << "![" << weather << "](" << kCardDir << "/" << weather << ".png)\n\n";
@@ -123,7 +177,7 @@ void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
                 contact_sheet({frame_preview_row(sequence_dir(out, plan.name), 0, 512)}));
     examples.push_back(plan.weather);
   }
-  write_text(out / kCardFile, card_text(config, examples));
+  write_text(out / kCardFile, card_text(config, out, examples));
 }
 
 std::vector<fs::path> dataset_card_files(const ReleaseConfig& config) {

@@ -1,6 +1,8 @@
 #include "flowscape/release/layout.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace flowscape {
@@ -36,6 +38,8 @@ const char* resampling_name(Resampling resampling) {
       return "nearest";
     case Resampling::Flow:
       return "flow";
+    case Resampling::Vector:
+      return "vector";
   }
   return "";
 }
@@ -48,8 +52,149 @@ const OutputKind& output_kind(std::string_view name) {
   throw std::invalid_argument("unknown output kind \"" + std::string(name) + "\"");
 }
 
-bool has_frame(const OutputKind& kind, int frame, int frames) {
-  return frame >= 0 && frame < frames - (kind.pairs_only ? 1 : 0);
+namespace {
+
+constexpr std::string_view kGapSuffix = "_gap";
+
+const char* direction_name(Direction direction) {
+  switch (direction) {
+    case Direction::Forward:
+      return "forward";
+    case Direction::Backward:
+      return "backward";
+    case Direction::None:
+      return "none";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string ReleaseKind::name() const {
+  return std::string(row->name) + (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
+}
+
+std::string ReleaseKind::folder() const {
+  return std::string(row->folder) +
+         (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
+}
+
+bool ReleaseKind::has_frame(int frame, int frames) const {
+  return frame >= 0 && frame < frames && frame + step() >= 0 && frame + step() < frames;
+}
+
+ReleaseKind ReleaseKind::valid_kind() const {
+  if (!row->is_flow()) throw std::logic_error(name() + " is not a flow kind");
+  return {output_kind(row->direction == Direction::Backward ? "valid_backward" : "valid"), gap};
+}
+
+ReleaseKind flow_kind_of_step(int step) {
+  if (step == 0) throw std::logic_error("a flow needs a step other than 0");
+  return {output_kind(step > 0 ? "flow" : "flow_backward"), std::abs(step)};
+}
+
+std::optional<ReleaseKind> release_kind(std::string_view name) {
+  for (const OutputKind& kind : kOutputKinds) {
+    if (name == kind.name) return ReleaseKind(kind);
+    if (!kind.per_gap || !name.starts_with(std::string(kind.name) + std::string(kGapSuffix)))
+      continue;
+    const std::string_view digits = name.substr(kind.name.size() + kGapSuffix.size());
+    if (digits.empty() || digits.size() > 4 || digits[0] == '0' ||
+        digits.find_first_not_of("0123456789") != std::string_view::npos)
+      continue;
+    const int gap = std::stoi(std::string(digits));
+    if (gap > 1) return ReleaseKind(kind, gap);
+  }
+  return std::nullopt;
+}
+
+bool has_frame(const ReleaseKind& kind, int frame, int frames) {
+  return kind.has_frame(frame, frames);
+}
+
+Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube) {
+  if (std::find(gaps.begin(), gaps.end(), 1) == gaps.end())
+    throw std::invalid_argument("flow gaps must include 1 (the flow every tool reads)");
+  for (int gap : gaps)
+    if (gap < 1 || gap > kMaxFlowGap)
+      throw std::invalid_argument("flow gap " + std::to_string(gap) + " is out of range (1.." +
+                                  std::to_string(kMaxFlowGap) + ")");
+  const bool all = std::find(picked.begin(), picked.end(), "all") != picked.end();
+  for (const std::string& name : picked)
+    if (name != "all" && (!release_kind(name) || release_kind(name)->gap != 1 ||
+                          output_kind(name).always))
+      throw std::invalid_argument("unknown output kind \"" + name + "\" (pick from: all, " +
+                                  [] {
+                                    std::string list;
+                                    for (const std::string& k : pickable_kinds())
+                                      list += (list.empty() ? "" : ", ") + k;
+                                    return list;
+                                  }() +
+                                  ")");
+  std::vector<int> sorted = gaps;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  if (sorted.size() > std::size_t(kMaxFlowGaps))
+    throw std::invalid_argument("at most " + std::to_string(kMaxFlowGaps) + " flow gaps");
+  Layout layout;
+  layout.cube = cube;
+  const auto is_picked = [&](std::string_view name) {
+    return std::find(picked.begin(), picked.end(), name) != picked.end();
+  };
+  for (const OutputKind& kind : kOutputKinds) {
+    // a flow brings the mask of its targets
+    const bool wanted = kind.always || all || is_picked(kind.name) ||
+                        (kind.name == "valid_backward" && is_picked("flow_backward"));
+    if (!wanted) continue;
+    for (int gap : kind.per_gap ? sorted : std::vector<int>{1})
+      layout.kinds.emplace_back(kind, gap);
+  }
+  return layout;
+}
+
+const ReleaseKind* Layout::find(std::string_view name) const {
+  for (const ReleaseKind& kind : kinds)
+    if (kind.name() == name) return &kind;
+  return nullptr;
+}
+
+std::vector<fs::path> Layout::frame_files(int frame, int frames) const {
+  std::vector<fs::path> files;
+  std::vector<View> views{std::nullopt};
+  if (cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
+  for (const View& view : views)
+    for (const ReleaseKind& kind : kinds)
+      if ((view ? kind.row->cube : kind.row->erp) && kind.has_frame(frame, frames))
+        files.push_back(frame_file(kind, view, frame));
+  return files;
+}
+
+std::vector<fs::path> Layout::sequence_files(int frames) const {
+  std::vector<fs::path> files{kMetaFile};
+  for (int f = 0; f < frames; ++f) {
+    const std::vector<fs::path> frame = frame_files(f, frames);
+    files.insert(files.end(), frame.begin(), frame.end());
+  }
+  return files;
+}
+
+std::vector<int> Layout::flow_steps(int frame, int frames) const {
+  std::vector<int> steps;
+  if (frame + 1 < frames) steps.push_back(1);
+  for (const ReleaseKind& kind : kinds)
+    if (kind.row->is_flow() && kind.has_frame(frame, frames) &&
+        std::find(steps.begin(), steps.end(), kind.step()) == steps.end())
+      steps.push_back(kind.step());
+  return steps;
+}
+
+Layout flowscape_layout(bool cube) { return Layout::of({}, {1}, cube); }
+
+std::vector<std::string> pickable_kinds() {
+  std::vector<std::string> names;
+  for (const OutputKind& kind : kOutputKinds)
+    if (!kind.always) names.emplace_back(kind.name);
+  return names;
 }
 
 std::string sequence_name(int map, int sequence) {
@@ -66,52 +211,38 @@ fs::path view_dir(View view) {
   return view ? fs::path(kCubeDir) / std::string(face_name(*view)) : fs::path(kErpDir);
 }
 
-fs::path frame_file(const OutputKind& kind, View view, int frame) {
-  return view_dir(view) / std::string(kind.folder) /
-         (frame_name(frame) + std::string(kind.extension));
+fs::path frame_file(const ReleaseKind& kind, View view, int frame) {
+  return view_dir(view) / kind.folder() / (frame_name(frame) + std::string(kind.row->extension));
 }
 
 fs::path erp_file(const fs::path& sequence, std::string_view kind, int frame) {
-  return sequence / frame_file(output_kind(kind), std::nullopt, frame);
-}
-
-std::vector<fs::path> frame_files(int frame, int frames, bool cube) {
-  std::vector<fs::path> files;
-  std::vector<View> views{std::nullopt};
-  if (cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
-  for (const View& view : views)
-    for (const OutputKind& kind : kOutputKinds)
-      if ((view ? kind.cube : kind.erp) && has_frame(kind, frame, frames))
-        files.push_back(frame_file(kind, view, frame));
-  return files;
-}
-
-std::vector<fs::path> sequence_files(int frames, bool cube) {
-  std::vector<fs::path> files{kMetaFile};
-  for (int f = 0; f < frames; ++f) {
-    const std::vector<fs::path> frame = frame_files(f, frames, cube);
-    files.insert(files.end(), frame.begin(), frame.end());
-  }
-  return files;
+  const std::optional<ReleaseKind> known = release_kind(kind);
+  if (!known) throw std::invalid_argument("unknown output kind \"" + std::string(kind) + "\"");
+  return sequence / frame_file(*known, std::nullopt, frame);
 }
 
 fs::path split_file(const fs::path& release, const std::string& side) {
   return release / kSplitsDir / (side + ".txt");
 }
 
-nlohmann::json layout_json() {
+nlohmann::json layout_json(const Layout& layout) {
   nlohmann::json kinds = nlohmann::json::array();
-  for (const OutputKind& k : kOutputKinds)
-    kinds.push_back({{"name", k.name},
-                     {"folder", k.folder},
+  for (const ReleaseKind& kind : layout.kinds) {
+    const OutputKind& k = *kind.row;
+    kinds.push_back({{"name", kind.name()},
+                     {"folder", kind.folder()},
                      {"extension", k.extension},
                      {"pixel_type", pixel_type_name(k.pixel)},
                      {"channels", k.channels},
                      {"resampling", resampling_name(k.resampling)},
                      {"erp", k.erp},
                      {"cube", k.cube},
-                     {"pairs_only", k.pairs_only},
+                     {"direction", direction_name(k.direction)},
+                     {"gap", kind.gap},
+                     {"step", kind.step()},
+                     {"pairs_only", k.direction == Direction::Forward},
                      {"description", k.description}});
+  }
   nlohmann::json faces = nlohmann::json::array();
   for (Face face : kFaces) faces.push_back(face_name(face));
   return {{"sequence_dir", std::string(kSequencesDir) + "/{sequence}"},
@@ -120,7 +251,68 @@ nlohmann::json layout_json() {
           {"faces", faces},
           {"frame_file", "{view}/{folder}/{frame:06d}{extension}"},
           {"split_file", std::string(kSplitsDir) + "/{split}.txt"},
+          {"cube_faces", layout.cube},
           {"kinds", kinds}};
+}
+
+nlohmann::json conventions_json() {
+  return {
+      {"frame_rate", kFrameRate},
+      {"time", "frame F is at F / frame_rate seconds"},
+      {"world_frame", "right-handed, z up, metres"},
+      {"rig_frame", "x forward, y left, z up"},
+      {"camera_frame", "x right, y down, z forward (meta.json views: camera_to_rig)"},
+      {"pixel_centre", "pixel (i, j) is at (i + 0.5, j + 0.5); K in meta.json: OpenCV's (0, 0)"},
+      {"flow",
+       {{"value", "target - source"},
+        {"source", "the pixel of frame F"},
+        {"target", "where its surface point (fixed on its object) is seen in frame F + step, "
+                   "step = the kind's step in layout.kinds (forward > 0, backward < 0)"},
+        {"units", "pixels"},
+        {"channels", {"u", "v"}},
+        {"u", "right"},
+        {"v", "down"},
+        {"erp_seam", "360"},
+        {"erp_u_range", "(-W/2, W/2]: the shortest way round (paper Eq. 3)"},
+        {"sky", "finite: the rig's rotation only (points at infinity)"},
+        {"occluded", "kept: exact flow, the valid mask is 0"},
+        {"unknown_value", kUnknownFlow},
+        {"unknown_where", "the target is behind a pinhole camera"},
+        {"file", "Middlebury .flo: float32 little-endian, tag 202021.25, width, height, u v"}}},
+      {"valid",
+       {{"1", "the flow target is in front of the camera and visible in the target frame"},
+        {"0", "occluded, behind the camera, or unknown"}}},
+      {"depth",
+       {{"value", "euclidean distance along the pixel-centre ray from the optical centre"},
+        {"units", "metres"},
+        {"sky", "inf"}}},
+      {"scene_flow",
+       {{"value", "the surface point's position at F + 1 minus at F"},
+        {"frame", "camera frame at F"},
+        {"units", "metres"},
+        {"sky", "nan"}}},
+      {"normal",
+       {{"value", "unit normal of the first opaque surface, facing the camera"},
+        {"frame", "camera frame"},
+        {"sky", "nan"}}},
+      {"semantic", {{"classes", "CARLA 0.9.10-0.9.13 (design.md)"}, {"sky", 13}}},
+      {"instance", {{"static_world_and_sky", 0}}},
+      {"boxes_2d",
+       {{"value", "[instance, x0, y0, x1, y1] in pixel edges, x1 and y1 exclusive"},
+        {"erp_wrap", "x1 <= x0: the box crosses the seam (columns x0..W-1, then 0..x1-1)"}}}};
+}
+
+Layout layout_from_json(const nlohmann::json& json) {
+  if (!json.is_object() || !json.contains("kinds")) return flowscape_layout(true);
+  Layout layout;
+  layout.cube = json.value("cube_faces", true);
+  for (const nlohmann::json& row : json.at("kinds")) {
+    const std::string name = row.is_object() ? row.value("name", "") : "";
+    const std::optional<ReleaseKind> kind = release_kind(name);
+    if (!kind) throw std::invalid_argument("unknown output kind \"" + name + "\"");
+    layout.kinds.push_back(*kind);
+  }
+  return layout;
 }
 
 }  // namespace flowscape

@@ -26,7 +26,7 @@ nlohmann::json file_entry(const fs::path& file) {
 // The files of the given sequences of a release made with `config`, relative to the release.
 std::vector<fs::path> release_sequence_files(const ReleaseConfig& config,
                                              const std::vector<SequencePlan>& plans) {
-  const std::vector<fs::path> in_sequence = sequence_files(config.frames, config.cube);
+  const std::vector<fs::path> in_sequence = release_layout(config).sequence_files(config.frames);
   std::vector<fs::path> files;
   for (const SequencePlan& plan : plans)
     for (const fs::path& file : in_sequence) files.push_back(sequence_dir("", plan.name) / file);
@@ -134,9 +134,8 @@ void check_sequence_complete(const fs::path& out, const ReleaseConfig& config,
   const int shard = plan.number % config.shards;
   const std::string rerun = " (rerun shard " + std::to_string(shard) + ")";
   if (!fs::exists(dir / kMetaFile)) throw FileError(dir, "sequence missing" + rerun);
-  for (int f = 0; f < config.frames; ++f)
-    for (const fs::path& file : frame_files(f, config.frames, config.cube))
-      if (!fs::exists(dir / file)) throw FileError(dir / file, "missing" + rerun);
+  for (const fs::path& file : release_layout(config).sequence_files(config.frames))
+    if (!fs::exists(dir / file)) throw FileError(dir / file, "missing" + rerun);
 }
 
 }  // namespace
@@ -163,7 +162,8 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
   const nlohmann::json manifest = {{"generator", kGeneratorVersion},
                                    {"config", to_json(config)},
                                    {"counts", counts(config)},
-                                   {"layout", layout_json()},
+                                   {"layout", layout_json(release_layout(config))},
+                                   {"conventions", conventions_json()},
                                    {"files", all}};
   write_text(out / kManifestFile, manifest.dump(1) + "\n");
 }

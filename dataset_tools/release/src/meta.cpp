@@ -1,6 +1,9 @@
 #include "flowscape/release/meta.h"
 
+#include <algorithm>
 #include <fstream>
+#include <limits>
+#include <map>
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/layout.h"
@@ -27,7 +30,93 @@ Pose pose_from_row_major(const nlohmann::json& values) {
   return pose;
 }
 
+nlohmann::json matrix_rows(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
+
 }  // namespace
+
+nlohmann::json views_json(int erp_height, int face_size) {
+  const int W = 2 * erp_height;
+  nlohmann::json views = {
+      {"camera_frame", "x right, y down, z forward; camera_to_rig maps it to the rig frame"},
+      {"rig_frame", kRigFrame},
+      {kErpDir,
+       {{"model", "equirectangular"},
+        {"width", W},
+        {"height", erp_height},
+        {"longitude", "phi = 2 pi x / W - pi, x the continuous column (pixel i's centre at i + "
+                      "0.5); phi = 0 looks forward (rig x), phi grows to the right"},
+        {"latitude", "theta = pi y / H - pi / 2, growing downwards"},
+        {"ray_in_rig", "(cos theta cos phi, -cos theta sin phi, -sin theta)"},
+        {"camera_to_rig", matrix_rows(face_rotation(Face::Front))},
+        {"translation_in_rig", {0, 0, 0}}}}};
+  if (face_size <= 0) return views;
+  const double f = face_size / 2.0, c = face_size / 2.0 - 0.5;
+  for (Face face : kFaces)
+    views[std::string(view_dir(face).generic_string())] = {
+        {"model", "pinhole"},
+        {"width", face_size},
+        {"height", face_size},
+        {"K", {{f, 0, c}, {0, f, c}, {0, 0, 1}}},
+        {"K_pixel_origin", "the centre of the top-left pixel is (0, 0) (OpenCV)"},
+        {"field_of_view_degrees", 90},
+        {"camera_to_rig", matrix_rows(face_rotation(face))},
+        {"translation_in_rig", {0, 0, 0}}};
+  return views;
+}
+
+namespace {
+
+// The columns an instance covers, [x0, x1): from its first to its last column; on a panorama the
+// complement of the longest run of empty columns round the circle (x1 <= x0: across the seam).
+std::pair<int, int> column_span(const std::vector<bool>& columns, bool panorama) {
+  const int W = int(columns.size());
+  const int first = int(std::find(columns.begin(), columns.end(), true) - columns.begin());
+  if (!panorama) {
+    const int last = W - 1 - int(std::find(columns.rbegin(), columns.rend(), true) - columns.rbegin());
+    return {first, last + 1};
+  }
+  int gap_start = 0, gap = 0, run_start = 0, run = 0;
+  for (int i = 1; i <= W; ++i) {  // from a covered column, so no run is cut by the seam
+    const int x = (first + i) % W;
+    if (columns[std::size_t(x)]) {
+      run = 0;
+      continue;
+    }
+    if (run++ == 0) run_start = x;
+    if (run > gap) gap = run, gap_start = run_start;
+  }
+  if (gap == 0) return {0, W};
+  return {(gap_start + gap) % W, gap_start == 0 ? W : gap_start};
+}
+
+}  // namespace
+
+std::vector<InstanceBox> instance_boxes(ImageView<const std::uint16_t> ids, bool panorama) {
+  struct Extent {
+    int y0, y1;
+    std::vector<bool> columns;
+  };
+  std::map<std::uint16_t, Extent> found;
+  for (int y = 0; y < ids.height; ++y)
+    for (int x = 0; x < ids.width; ++x) {
+      const std::uint16_t id = *ids.pixel(x, y);
+      if (id == 0) continue;
+      auto [entry, fresh] = found.try_emplace(id, Extent{y, y + 1, {}});
+      Extent& e = entry->second;
+      if (fresh) e.columns.assign(std::size_t(ids.width), false);
+      e.columns[std::size_t(x)] = true;
+      e.y1 = y + 1;
+    }
+  std::vector<InstanceBox> boxes;
+  for (const auto& [id, e] : found) {
+    const auto [x0, x1] = column_span(e.columns, panorama);
+    boxes.push_back({id, x0, e.y0, x1, e.y1});
+  }
+  return boxes;
+}
+
 
 std::string SequenceMeta::weather_preset() const { return weather.at("preset").get<std::string>(); }
 
@@ -63,6 +152,9 @@ nlohmann::json to_json(const SequenceMeta& m) {
     for (Face face : kFaces) faces.push_back(face_name(face));
     j["cube"] = {{"face_size", m.face_size}, {"focal", m.face_size / 2.0}, {"faces", faces}};
   }
+  for (const auto& [key, record] : {std::pair{"views", &m.views}, {"actors", &m.actors},
+                                    {"boxes_2d", &m.boxes}})
+    if (!record->is_null()) j[key] = *record;
   return j;
 }
 
@@ -84,6 +176,9 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     for (const nlohmann::json& pose : j.at("poses")) m.poses.push_back(pose_from_row_major(pose));
     m.city = j.value("city", nlohmann::json());
     if (j.contains("cube")) m.face_size = j.at("cube").at("face_size").get<int>();
+    m.views = j.value("views", nlohmann::json());
+    m.actors = j.value("actors", nlohmann::json());
+    m.boxes = j.value("boxes_2d", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());
@@ -113,7 +208,8 @@ SequenceMeta read_meta(const fs::path& sequence_dir) {
 }
 
 void write_meta(const fs::path& sequence_dir, const SequenceMeta& meta) {
-  write_text(sequence_dir / kMetaFile, to_json(meta).dump(1) + "\n");
+  // compact: the actors' and boxes' columns would be mostly indentation
+  write_text(sequence_dir / kMetaFile, to_json(meta).dump() + "\n");
 }
 
 }  // namespace flowscape

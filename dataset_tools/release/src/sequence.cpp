@@ -1,9 +1,11 @@
 #include "flowscape/release/sequence.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "flowscape/core/random.h"
 #include "flowscape/renderer/denoise.h"
+#include "flowscape/scenes/actors.h"
 
 namespace flowscape {
 
@@ -15,6 +17,21 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
 FramePair Sequence::frame_pair(int frame) const {
   const double t = time(frame), next = t + 1 / kFrameRate;
   return {t, next, city.rig(t), city.rig(next)};
+}
+
+Moment Sequence::moment(int frame) const { return {time(frame), city.rig(time(frame))}; }
+
+TruthPlan truth_plan(const Sequence& sequence, const Layout& layout, int frame, int frames) {
+  TruthPlan plan{{sequence.frame_pair(frame)}, {}};
+  for (int step : layout.flow_steps(frame, frames))
+    if (step != 1) {
+      plan.request.more.push_back(sequence.moment(frame + step));
+      plan.steps.push_back(step);
+    }
+  plan.request.scene_flow = layout.has("scene_flow");
+  plan.request.normal = layout.has("normal");
+  plan.request.shading_normal = layout.has("normal_shading");
+  return plan;
 }
 
 std::uint64_t Sequence::color_seed(int frame) const { return derived_seed(spec.seed, frame, 1); }
@@ -67,7 +84,52 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(Sequence::time(f)));
   meta.city = to_json(s.city);
   meta.face_size = config.cube ? config.face_size : 0;
+  meta.views = views_json(config.height, meta.face_size);
+  meta.actors = actor_records(s, config.frames);
   return meta;
+}
+
+namespace {
+
+// Micrometres and microradians: far below what the scene's float vertices hold, and short JSON.
+double rounded(double value) { return std::round(value * 1e6) / 1e6; }
+
+nlohmann::json vector_json(const Vec3& v) { return {rounded(v.x()), rounded(v.y()), rounded(v.z())}; }
+
+// Appends a box pose's centre, heading (the yaw of its x axis) and rotation (a unit quaternion w,
+// x, y, z) to the actor's columns, for a box pose in the world or (suffix "_rig") in the rig.
+void add_box_pose(nlohmann::json& columns, const Pose& pose, const std::string& suffix) {
+  const Eigen::Quaterniond q(pose.linear());
+  columns["centre" + suffix].push_back(vector_json(pose.translation()));
+  columns["heading" + suffix].push_back(
+      rounded(std::atan2(pose.linear()(1, 0), pose.linear()(0, 0))));
+  columns["rotation" + suffix].push_back(
+      {rounded(q.w()), rounded(q.x()), rounded(q.y()), rounded(q.z())});
+}
+
+}  // namespace
+
+nlohmann::json actor_records(const Sequence& s, int frames) {
+  nlohmann::json actors = nlohmann::json::array();
+  for (std::size_t a = 0; a < s.city.actors.size(); ++a) {
+    const Actor& actor = s.city.scene.actors[a];
+    nlohmann::json record = {{"instance", actor.instance},
+                             {"kind", kind_name(s.city.actors[a].kind)},
+                             {"class", int(actor_class(actor))}};
+    for (int f = 0; f < frames; ++f) {  // one entry per frame in each column
+      const double t = Sequence::time(f);
+      const Box3 box = actor_box(actor, t);
+      const Motion motion =
+          actor_motion(actor, t, actor.pose(t).inverse() * box.pose.translation());
+      add_box_pose(record, box.pose, "");
+      add_box_pose(record, s.city.rig(t).inverse() * box.pose, "_rig");
+      record["size"].push_back(vector_json(box.size));
+      record["velocity"].push_back(vector_json(motion.linear));
+      record["angular_velocity"].push_back(vector_json(motion.angular));
+    }
+    actors.push_back(record);
+  }
+  return actors;
 }
 
 }  // namespace flowscape

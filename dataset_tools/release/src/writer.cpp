@@ -22,11 +22,12 @@ namespace flowscape {
 namespace fs = std::filesystem;
 namespace {
 
-using ViewImages = std::map<std::string_view, AnyImage>;
+using ViewImages = std::map<std::string, AnyImage>;
 
-// The images of one view of a frame, by output kind (kOutputKinds), each in its file's pixel type.
-// A new output kind adds its image here.
-ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color) {
+// The images of one view of a frame, by release kind (layout.h), each in its file's pixel type;
+// truth.more[k] is the flow of step more_steps[k]. A new output kind adds its image here.
+ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
+                       const std::vector<int>& more_steps) {
   ViewImages images;
   images.emplace("color", std::move(color));
   images.emplace("flow", std::move(truth.flow));
@@ -34,6 +35,14 @@ ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color) {
   images.emplace("instance", std::move(truth.instance));
   images.emplace("depth", std::move(truth.depth));
   images.emplace("valid", std::move(truth.valid));
+  for (std::size_t k = 0; k < more_steps.size(); ++k) {
+    const ReleaseKind flow = flow_kind_of_step(more_steps[k]);
+    images.emplace(flow.name(), std::move(truth.more[k].flow));
+    images.emplace(flow.valid_kind().name(), std::move(truth.more[k].valid));
+  }
+  images.emplace("scene_flow", std::move(truth.scene_flow));
+  images.emplace("normal", std::move(truth.normal));
+  images.emplace("normal_shading", std::move(truth.shading_normal));
   return images;
 }
 
@@ -54,42 +63,66 @@ void write_output(const fs::path& path, const OutputKind& kind, ImageView<const 
 }
 
 // Writes the kinds this view has at `frame`; a cube view's images are the six faces stacked.
-void write_view(const fs::path& dir, bool cube, int frame, int frames, const ViewImages& images) {
-  for (const OutputKind& kind : kOutputKinds) {
-    if (!(cube ? kind.cube : kind.erp) || !has_frame(kind, frame, frames)) continue;
+void write_view(const fs::path& dir, const Layout& layout, bool cube, int frame, int frames,
+                const ViewImages& images) {
+  for (const ReleaseKind& kind : layout.kinds) {
+    if (!(cube ? kind.row->cube : kind.row->erp) || !kind.has_frame(frame, frames)) continue;
     std::visit(
         [&](const auto& image) {
           if (!cube)
-            return write_output(dir / frame_file(kind, std::nullopt, frame), kind, image.view());
+            return write_output(dir / frame_file(kind, std::nullopt, frame), *kind.row,
+                                image.view());
           for (Face face : kFaces)
-            write_output(dir / frame_file(kind, face, frame), kind, face_view(image.view(), face));
+            write_output(dir / frame_file(kind, face, frame), *kind.row,
+                         face_view(image.view(), face));
         },
-        images.at(kind.name));
+        images.at(kind.name()));
   }
 }
 
 // The ERP colour is stitched from the cube faces' (denoised face by face) when there are faces,
 // else rendered and denoised directly; the ERP ground truth is always ray cast directly (exact,
 // and cheap next to colour).
-void write_frame(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
-                 const CubeToErp* map, const fs::path& dir, int frame) {
-  const FramePair pair = sequence.frame_pair(frame);
+void write_frame(const ReleaseConfig& config, const Layout& layout, const Sequence& sequence,
+                 Renderer& renderer, const CubeToErp* map, const fs::path& dir, int frame) {
+  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   const Projection erp = Projection::equirectangular(config.height);
-  GroundTruth truth = renderer.ground_truth(erp, pair);
+  GroundTruth truth = renderer.ground_truth(erp, plan.request);
   Image<float> erp_color;
   if (map) {
     const RenderOptions options = sequence.color_options(config, frame);
-    CubeFrame cube = render_cube(renderer, config.face_size, pair, &options);
+    CubeFrame cube = render_cube(renderer, config.face_size, plan.request, &options);
     const Image<float> color =
         config.denoise == "none" ? raw_color(cube.color) : denoise_cube(cube);
     erp_color = resample_bilinear(map->sampling, color);
-    write_view(dir, true, frame, config.frames,
-               view_images(std::move(cube.truth), linear_to_srgb8(color.view())));
+    write_view(dir, layout, true, frame, config.frames,
+               view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps));
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
-  write_view(dir, false, frame, config.frames,
-             view_images(std::move(truth), linear_to_srgb8(erp_color.view())));
+  write_view(dir, layout, false, frame, config.frames,
+             view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps));
+}
+
+// The 2-D boxes of every instance per view and frame, from the sequence's instance images:
+// {"erp": [[[id, x0, y0, x1, y1], ...] per frame], "cube/front": ...}.
+nlohmann::json boxes_json(const fs::path& dir, const Layout& layout, int frames) {
+  std::vector<View> views{std::nullopt};
+  if (layout.cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
+  nlohmann::json boxes = nlohmann::json::object();
+  for (const View& view : views) {
+    nlohmann::json per_frame = nlohmann::json::array();
+    for (int f = 0; f < frames; ++f) {
+      const Image<std::uint16_t> ids =
+          read_image<std::uint16_t>(dir / frame_file(output_kind("instance"), view, f));
+      nlohmann::json frame = nlohmann::json::array();
+      for (const InstanceBox& b : instance_boxes(ids.view(), !view))
+        frame.push_back({b.instance, b.x0, b.y0, b.x1, b.y1});
+      per_frame.push_back(frame);
+    }
+    boxes[view_dir(view).generic_string()] = per_frame;
+  }
+  return boxes;
 }
 
 bool all_complete(const fs::path& dir, const std::vector<fs::path>& files) {
@@ -117,10 +150,16 @@ void remove_release_files(const fs::path& out) {
 // The config a release in `out` was started with: config.json (written before any frame) or, for a
 // release from before it, its manifest's.
 nlohmann::json recorded_config(const fs::path& out) {
-  if (fs::exists(out / kConfigFile)) return read_json(out / kConfigFile);
-  if (fs::exists(out / kManifestFile))
-    return read_json(out / kManifestFile).value("config", nlohmann::json());
-  return nullptr;
+  nlohmann::json recorded;
+  if (fs::exists(out / kConfigFile))
+    recorded = read_json(out / kConfigFile);
+  else if (fs::exists(out / kManifestFile))
+    recorded = read_json(out / kManifestFile).value("config", nlohmann::json());
+  if (recorded.is_object()) {  // releases from before these keys held what they say now
+    if (!recorded.contains("outputs")) recorded["outputs"] = nlohmann::json::array();
+    if (!recorded.contains("flow_gaps")) recorded["flow_gaps"] = {1};
+  }
+  return recorded;
 }
 
 }  // namespace
@@ -128,11 +167,12 @@ nlohmann::json recorded_config(const fs::path& out) {
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const fs::path& out,
                     const SequenceProgress& progress) {
   const fs::path dir = sequence_dir(out, plan.name);
+  const Layout layout = release_layout(config);
   fs::create_directories(dir);
   remove_temporary_files_under(dir);
   std::vector<int> frames_to_render;
   for (int f = 0; f < config.frames; ++f) {
-    if (all_complete(dir, frame_files(f, config.frames, config.cube)))
+    if (all_complete(dir, layout.frame_files(f, config.frames)))
       progress.frame_skipped();
     else
       frames_to_render.push_back(f);
@@ -140,14 +180,19 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
-  if (!has_meta) write_meta(dir, sequence_meta(sequence, plan, config));
-  Renderer renderer(sequence.city.scene);
-  const CubeToErp map =
-      config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
-  for (int f : frames_to_render) {
-    write_frame(config, sequence, renderer, config.cube ? &map : nullptr, dir, f);
-    progress.frame_done();
+  if (!frames_to_render.empty()) {
+    Renderer renderer(sequence.city.scene);
+    const CubeToErp map =
+        config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
+    for (int f : frames_to_render) {
+      write_frame(config, layout, sequence, renderer, config.cube ? &map : nullptr, dir, f);
+      progress.frame_done();
+    }
   }
+  // last: its 2-D boxes come from the frames' instance images, and it marks the sequence done
+  SequenceMeta meta = sequence_meta(sequence, plan, config);
+  meta.boxes = boxes_json(dir, layout, config.frames);
+  write_meta(dir, meta);
 }
 
 void claim_release(const ReleaseConfig& config, const fs::path& out, bool force) {

@@ -19,6 +19,10 @@ struct Projection {
   static Projection pinhole(int width, int height, double fov_x_degrees);
   static Projection equirectangular(int height);
 
+  // The view's camera frame (x right, y down, z forward) -> rig: a pinhole's rotation; for the ERP
+  // the front face's (the ERP's centre, phi = theta = 0, looks along the camera's z). Normals and
+  // scene flow are given in this frame.
+  Mat3 camera_to_rig() const;
   // Ray through a continuous pixel position (pixel centres at +0.5); not normalised.
   Vec3 ray(Vec2 pixel) const;
   // Continuous pixel position of a rig-frame direction; nullopt behind a pinhole.

@@ -3,6 +3,7 @@
 // Each mesh gets its own BVH, built once; every frame only re-poses the instances.
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "flowscape/core/image.h"
 #include "flowscape/renderer/projection.h"
@@ -16,12 +17,37 @@ struct FramePair {
   Pose rig = Pose::Identity(), next_rig = Pose::Identity();  // rig -> world
 };
 
+// A moment of a sequence: a time and where the rig is then.
+struct Moment {
+  double time = 0;
+  Pose rig = Pose::Identity();  // rig -> world
+};
+
+// The ground truth a frame needs: flow and validity to the pair's next moment and to each of
+// `more` (other frame gaps, earlier frames: flow goes from pair.time to the target), and, when
+// asked, the 3-D motion of each pixel's surface point to the pair's next moment and its normals.
+struct TruthRequest {
+  FramePair pair;
+  std::vector<Moment> more;
+  bool scene_flow = false, normal = false, shading_normal = false;
+};
+
+struct FlowTruth {
+  Image<float> flow;          // 2 channels, pixels (ERP: 360-degree or classic)
+  Image<std::uint8_t> valid;  // 1 where the target is in view then and visible
+};
+
 struct GroundTruth {
   Image<float> flow;              // 2 channels, forward flow in pixels (ERP: 360-degree or classic)
   Image<std::uint8_t> semantic;   // CARLA class id, Sky where the ray escapes
   Image<std::uint16_t> instance;  // 0 for the static world and the sky
   Image<float> depth;             // distance along the ray, metres; +infinity for the sky
   Image<std::uint8_t> valid;      // 1 where the target is in front of the camera and visible then
+  std::vector<FlowTruth> more;    // to TruthRequest::more, in its order
+  // 3 channels each in the view's camera frame (Projection::camera_to_rig), NaN for the sky;
+  // empty unless asked: the surface point's displacement to the pair's next moment (metres), the
+  // unit geometric normal facing the camera, the unit shading normal (textures' bumps included).
+  Image<float> scene_flow, normal, shading_normal;
 };
 
 struct RenderOptions {
@@ -68,6 +94,13 @@ class Renderer {
   // by the camera at next_time; the sky moves with the rig's rotation only.
   GroundTruth ground_truth(const Projection& projection, const FramePair& frames,
                            FlowMode mode = FlowMode::Wrap360);
+  // Every kind the request asks for, with one camera ray per pixel.
+  GroundTruth ground_truth(const Projection& projection, const TruthRequest& request,
+                           FlowMode mode = FlowMode::Wrap360);
+  // The same for the rays through the given continuous pixel positions (not only pixel centres),
+  // as images of pixels.size() x 1: column k is pixels[k]'s.
+  GroundTruth ground_truth_at(const Projection& projection, const TruthRequest& request,
+                              const std::vector<Vec2>& pixels, FlowMode mode = FlowMode::Wrap360);
 
   // Linear HDR radiance (RGB) at frames.time, path traced: Lambertian, clear-coat, metal, glass
   // and emissive surfaces, sun (sampled directly) and sky, fog integrated in closed form, Russian
@@ -90,6 +123,8 @@ struct CubeFrame {
   GroundTruth truth;
 };
 CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,
+                      const RenderOptions* color_options, FlowMode mode = FlowMode::Wrap360);
+CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& request,
                       const RenderOptions* color_options, FlowMode mode = FlowMode::Wrap360);
 
 }  // namespace flowscape

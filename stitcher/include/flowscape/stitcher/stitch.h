@@ -70,6 +70,11 @@ Image<T> resample_nearest(const Sampling& sampling, const Image<T>& src) {
   return resample_nearest(sampling, src.view());
 }
 
+// 3-vectors in each face's camera frame (normals, scene flow) -> the ERP's camera frame (the
+// front face's, geometry.h): each face's turned into it, then the nearest source pixel. NaN
+// (no vector) stays NaN.
+Image<float> cube_to_erp_vectors(const CubeToErp& map, ImageView<const float> cube);
+
 struct FlowInput {
   ImageView<const float> flow;                // 2 channels, u right, v down, pixels
   ImageView<const std::uint16_t> instance{};  // optional: blend only taps of one instance

@@ -20,12 +20,15 @@ AnyImage read_cube_image(const std::filesystem::path& cube_dir, const std::strin
 template <class T>
 Image<T> read_cube_image_as(const std::filesystem::path& cube_dir, const std::string& modality,
                             const std::string& file_name);
-Flow read_cube_flow(const std::filesystem::path& cube_dir, const std::string& file_name);
+// Flow of the folder `modality` ("flow", "flow_backward", "flow_gap2", ...).
+Flow read_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
+                    const std::string& file_name);
 
 template <class T>
 void write_cube_image(const std::filesystem::path& cube_dir, const std::string& modality,
                       const std::string& file_name, ImageView<const T> stack);
-void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& file_name,
+void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
+                     const std::string& file_name,
                      ImageView<const float> stack);
 
 // File names (sorted) of one modality of the front face; empty when the folder is missing.

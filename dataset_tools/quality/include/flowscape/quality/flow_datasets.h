@@ -22,6 +22,9 @@ struct PairFiles {
   VisibleMask visible_kind = VisibleMask::None;
   std::string group, category;  // group: sequence or scene; category: weather, pass, split
   bool panorama = false;
+  // optional: the backward flow of image2's frame to image1's and its mask (FlowScape releases
+  // that hold it), for the forward-backward check
+  std::filesystem::path backward, backward_visible;
 };
 
 struct FlowDataset {
@@ -29,7 +32,9 @@ struct FlowDataset {
   std::vector<PairFiles> pairs;
 };
 
-// Throws FileError when the folder holds none of the known layouts.
+// Throws FileError when the folder holds none of the known layouts. A FlowScape release's kinds and
+// conventions are read from its manifest.json (one without: FlowScape's own); flow it does not
+// know how to read (another direction, units or axes) is a FileError naming the manifest.
 FlowDataset find_flow_dataset(const std::filesystem::path& root);
 // Images sorted by name pair up as (k, k + 1) with the k-th flow file: one image more than flows.
 // Patterns use * and ? in the file name part (the folder part is taken literally).

@@ -16,7 +16,13 @@ struct QualityRow {
   int pairs = 0;
   double pe = 0, wpe = 0, diff = 0;  // means over the pairs; diff in %
   int visible_pairs = 0;
-  double wpe_visible = 0;  // over non-occluded pixels, where the dataset gives masks
+  // over non-occluded and over occluded pixels, where the dataset gives masks
+  double wpe_visible = 0, wpe_occluded = 0;
+  // the forward-backward check (round_trip.h), pooled over the pixels of the pairs that have
+  // backward flow: the share of pixels visible both ways that return within 0.01 px
+  int round_trip_pairs = 0;
+  long both_ways = 0, returned = 0;
+  double round_trip_share() const { return both_ways ? double(returned) / double(both_ways) : 0; }
 };
 
 struct QualityReport {

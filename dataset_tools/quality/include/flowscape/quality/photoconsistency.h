@@ -12,8 +12,10 @@ namespace flowscape {
 
 struct PairErrors {
   double pe = 0, wpe = 0;  // means over `pixels`
-  double wpe_visible = 0;  // over the pixels a visibility mask marks (when one is given)
-  long pixels = 0, visible_pixels = 0;
+  // over the pixels a visibility mask marks visible (non-occluded) and hidden (occluded), when
+  // one is given
+  double wpe_visible = 0, wpe_occluded = 0;
+  long pixels = 0, visible_pixels = 0, occluded_pixels = 0;
 };
 
 struct PairImages {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "flowscape/release/layout.h"
+
 namespace flowscape {
 
 struct ReleaseConfig {
@@ -28,9 +30,16 @@ struct ReleaseConfig {
   std::map<std::string, std::string> models;
   std::uint64_t seed = 0;
   bool cube = true;           // also write the six faces (the ERP colour is stitched from them)
+  // Output kinds written besides the six every release has (layout.h's pickable rows, or "all"),
+  // and the frame gaps of every flow kind (1 = the flow to the next frame; must be there). The
+  // default is what bench_render found cheap next to the colour (docs/release.md).
+  std::vector<std::string> outputs{"flow_backward", "valid_backward"};
+  std::vector<int> flow_gaps{1};
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
+// The kinds a release made with `config` holds (its outputs, flow gaps and faces).
+Layout release_layout(const ReleaseConfig& config);
 nlohmann::json to_json(const ReleaseConfig& config);
 // "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ between two configs as JSON,
 // each value followed by the name of the config it comes from.

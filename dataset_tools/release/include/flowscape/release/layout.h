@@ -1,9 +1,10 @@
 #pragma once
 // The files of a FlowScape release (design.md, "Release layout"), written down once. Every kind of
-// output a frame can have is one row of kOutputKinds; the writer, resume, manifest, dataset card,
-// splits, previews, merge, stitch_erp, gt_quality and the Python plugin (through the "layout" that
-// manifest.json carries) find files through it. A new output kind is a row here plus the code that
-// produces its image in release/src/writer.cpp (docs/architecture.md).
+// output a frame can have is one row of kOutputKinds, and a release's Layout says which rows (and
+// flow gaps) it holds; the writer, resume, manifest, dataset card, splits, previews, merge,
+// stitch_erp, gt_quality and the Python plugin (through the "layout" that manifest.json carries)
+// find files through it. A new output kind is a row here plus the code that produces its image in
+// release/src/writer.cpp (docs/architecture.md).
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -23,7 +24,11 @@ enum class Resampling : std::uint8_t {
   Bilinear,  // smooth quantities
   Nearest,   // ids, depth, masks: never blended
   Flow,      // flow vectors, re-projected per pixel; the file is a flow file (formats/flow_io.h)
+  Vector,    // 3-vectors in the view's camera frame: nearest, turned from each face's frame to the
+             // ERP's (normals, scene flow)
 };
+// Which frames a kind connects: frame F alone, or F with F + gap (forward) or F - gap (backward).
+enum class Direction : std::int8_t { None = 0, Forward = 1, Backward = -1 };
 
 struct OutputKind {
   std::string_view name;       // in code, configs and manifest.json
@@ -32,32 +37,108 @@ struct OutputKind {
   PixelType pixel;
   int channels;
   Resampling resampling;
-  bool erp, cube;                // written for the ERP view, for every cube face
-  bool pairs_only;               // only frames with a next frame (forward flow F -> F + 1)
-  std::string_view description;  // for the dataset card
+  bool erp, cube;  // written for the ERP view, for every cube face
+  Direction direction;
+  bool per_gap;    // one kind per gap of the release's flow gaps (ReleaseKind)
+  bool always;     // in every release (the FlowScape six); the others are picked (--outputs)
+  std::string_view description;  // for the dataset card and docs
 
   constexpr bool is_flow() const { return resampling == Resampling::Flow; }
 };
 
-inline constexpr std::array<OutputKind, 6> kOutputKinds{{
-    {"color", "color", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true, false,
-     "8-bit sRGB PNG, path traced"},
-    {"flow", "flow", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true, true,
-     "forward flow to the next frame in pixels, Middlebury .flo (360-degree on the ERP)"},
-    {"semantic", "semantic", ".png", PixelType::UInt8, 1, Resampling::Nearest, true, true, false,
-     "8-bit CARLA class ids"},
-    {"instance", "instance", ".png", PixelType::UInt16, 1, Resampling::Nearest, true, true, false,
-     "16-bit instance ids (0 = static world and sky)"},
-    {"depth", "depth", ".exr", PixelType::Float32, 1, Resampling::Nearest, true, true, false,
-     "float EXR, metres along the ray (+inf for the sky)"},
-    {"valid", "valid", ".png", PixelType::UInt8, 1, Resampling::Nearest, true, true, true,
-     "8-bit, 1 where the flow target is visible in the next frame"},
+// Every kind a release can hold (docs/release.md, "Output kinds", has each one's definition).
+inline constexpr std::array<OutputKind, 11> kOutputKinds{{
+    {"color", "color", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true,
+     Direction::None, false, true, "8-bit sRGB PNG, path traced"},
+    {"flow", "flow", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true,
+     Direction::Forward, true, true,
+     "flow from frame F to F + gap in pixels (u right, v down), Middlebury .flo (360-degree on "
+     "the ERP)"},
+    {"semantic", "semantic", ".png", PixelType::UInt8, 1, Resampling::Nearest, true, true,
+     Direction::None, false, true, "8-bit CARLA class ids"},
+    {"instance", "instance", ".png", PixelType::UInt16, 1, Resampling::Nearest, true, true,
+     Direction::None, false, true, "16-bit instance ids (0 = static world and sky)"},
+    {"depth", "depth", ".exr", PixelType::Float32, 1, Resampling::Nearest, true, true,
+     Direction::None, false, true, "float EXR, metres along the ray (+inf for the sky)"},
+    {"valid", "valid", ".png", PixelType::UInt8, 1, Resampling::Nearest, true, true,
+     Direction::Forward, true, true,
+     "8-bit, 1 where the flow target is in view and visible in frame F + gap"},
+    {"flow_backward", "flow_backward", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true,
+     Direction::Backward, true, false,
+     "flow from frame F to F - gap in pixels, Middlebury .flo (360-degree on the ERP)"},
+    {"valid_backward", "valid_backward", ".png", PixelType::UInt8, 1, Resampling::Nearest, true,
+     true, Direction::Backward, true, false,
+     "8-bit, 1 where the backward flow target is in view and visible in frame F - gap"},
+    {"scene_flow", "scene_flow", ".exr", PixelType::Float32, 3, Resampling::Vector, true, true,
+     Direction::Forward, false, false,
+     "float EXR, metres: the surface point's 3-D motion from F to F + 1 in the camera frame of F "
+     "(NaN for the sky)"},
+    {"normal", "normal", ".exr", PixelType::Float32, 3, Resampling::Vector, true, true,
+     Direction::None, false, false,
+     "float EXR: the first opaque surface's unit geometric normal in the camera frame, facing "
+     "the camera (NaN for the sky)"},
+    {"normal_shading", "normal_shading", ".exr", PixelType::Float32, 3, Resampling::Vector, true,
+     true, Direction::None, false, false,
+     "float EXR: the shading normal there (smoothed, bumped and normal-mapped by the textures), "
+     "camera frame (NaN for the sky)"},
 }};
 
 // The row named `name`; throws std::invalid_argument for other names.
 const OutputKind& output_kind(std::string_view name);
-// Whether a sequence of `frames` frames has this kind at `frame` (pairs_only kinds end one early).
-bool has_frame(const OutputKind& kind, int frame, int frames);
+
+// A kind as a release holds it: a row of kOutputKinds and, for a per-gap row, its gap. Gap 1 keeps
+// the row's name and folder ("flow", "flow_backward"), gap k > 1 appends "_gap<k>" to both
+// ("flow_gap2", "valid_backward_gap4").
+struct ReleaseKind {
+  const OutputKind* row;
+  int gap = 1;
+  ReleaseKind(const OutputKind& kind, int gap = 1) : row(&kind), gap(gap) {}  // NOLINT: implicit
+
+  std::string name() const;
+  std::string folder() const;
+  int step() const { return int(row->direction) * gap; }  // frame F connects to F + step
+  // Whether a sequence of `frames` frames has this kind at `frame` (both ends inside it).
+  bool has_frame(int frame, int frames) const;
+  // For a flow kind, the mask of its targets (flow -> valid, flow_backward_gap2 ->
+  // valid_backward_gap2).
+  ReleaseKind valid_kind() const;
+  bool operator==(const ReleaseKind& other) const {
+    return row == other.row && gap == other.gap;
+  }
+};
+// The flow kind of a frame step: +k forward at gap k, -k backward at gap k.
+ReleaseKind flow_kind_of_step(int step);
+// The release kind a name (or folder) spells: "flow_gap2" -> flow at gap 2; nullopt for others.
+std::optional<ReleaseKind> release_kind(std::string_view name);
+bool has_frame(const ReleaseKind& kind, int frame, int frames);
+
+// Flow over a gap of k frames: k at most kMaxFlowGap, at most kMaxFlowGaps gaps.
+inline constexpr int kMaxFlowGap = 999, kMaxFlowGaps = 8;
+
+// What a release holds: the kinds every release has, the ones picked, each per-gap row at every
+// gap (in kOutputKinds order, gaps ascending), and whether it has cube faces.
+struct Layout {
+  std::vector<ReleaseKind> kinds;
+  bool cube = true;
+
+  // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.
+  // Throws std::invalid_argument naming what is wrong.
+  static Layout of(const std::vector<std::string>& picked, const std::vector<int>& gaps,
+                   bool cube);
+  const ReleaseKind* find(std::string_view name) const;  // null when the release lacks it
+  bool has(std::string_view name) const { return find(name) != nullptr; }
+  // Every file of one frame, relative to the sequence folder.
+  std::vector<std::filesystem::path> frame_files(int frame, int frames) const;
+  // Every file of a sequence (meta.json and each frame's), relative to its folder.
+  std::vector<std::filesystem::path> sequence_files(int frames) const;
+  // The frame steps of the flow kinds the frame has, +1 first (the forward flow every frame but
+  // the last has), each once.
+  std::vector<int> flow_steps(int frame, int frames) const;
+};
+// The kinds of FlowScape (the six every release has) at gap 1.
+Layout flowscape_layout(bool cube);
+// The rows --outputs may pick, in table order.
+std::vector<std::string> pickable_kinds();
 
 std::string sequence_name(int map, int sequence);  // "map03_seq05"
 std::string frame_name(int frame);                 // "000042"
@@ -78,19 +159,23 @@ inline constexpr const char* kErpDir = "erp";    // the ERP view's folder
 inline constexpr const char* kCubeDir = "cube";  // the faces' folders are cube/<face>
 std::filesystem::path view_dir(View view);       // "erp" or "cube/<face>"
 // <view>/<folder>/<frame><extension>, relative to the sequence folder.
-std::filesystem::path frame_file(const OutputKind& kind, View view, int frame);
-// The ERP file of output kind `kind` ("flow", "depth", ...) of a frame in a sequence folder.
+std::filesystem::path frame_file(const ReleaseKind& kind, View view, int frame);
+// The ERP file of output kind `kind` ("flow", "depth", "flow_gap2", ...) of a frame in a sequence
+// folder.
 std::filesystem::path erp_file(const std::filesystem::path& sequence, std::string_view kind,
                                int frame);
-// Every file of one frame, relative to the sequence folder.
-std::vector<std::filesystem::path> frame_files(int frame, int frames, bool cube);
-// Every file of a sequence of `frames` frames (meta.json and each frame's), relative to its folder.
-std::vector<std::filesystem::path> sequence_files(int frames, bool cube);
 
 // splits/<side>.txt of a release.
 std::filesystem::path split_file(const std::filesystem::path& release, const std::string& side);
 
 // The layout as manifest.json states it: path templates (Python str.format fields) and the kinds.
-nlohmann::json layout_json();
+nlohmann::json layout_json(const Layout& layout);
+// The conventions of a release's data, as manifest.json and the dataset card state them for
+// programs to read (docs/release.md, "Conventions"): flow direction, units, axes, the ERP seam,
+// sky and invalid values, depth, frames and time.
+nlohmann::json conventions_json();
+// The kinds a manifest's layout lists (a release from before they were listed: FlowScape's six);
+// throws std::invalid_argument for kinds it does not know.
+Layout layout_from_json(const nlohmann::json& layout);
 
 }  // namespace flowscape

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "flowscape/core/image.h"
 #include "flowscape/core/types.h"
 
 namespace flowscape {
@@ -26,6 +27,9 @@ struct SequenceMeta {
   std::vector<Pose> poses;  // per frame: rig (x forward, y left, z up) -> world
   nlohmann::json city;      // scenes/' scene record (null when there is none)
   int face_size = 0;        // cube faces (focal face_size / 2); 0 = no faces
+  // Calibration of every view (views_json), every actor per frame (box and velocities), and the
+  // 2-D box of each instance per view and frame (instance_boxes); null when not recorded.
+  nlohmann::json views, actors, boxes;
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from
@@ -35,6 +39,21 @@ struct SequenceMeta {
 };
 
 inline constexpr std::array<const char*, 4> kBaseWeathers{"cloud", "fog", "rain", "sunny"};
+
+// Each view's camera model, size, intrinsics and pose in the rig: the ERP's angular conventions
+// and, with faces (face_size > 0), each face's 3x3 K (OpenCV's pixel convention: the centre of the
+// top-left pixel at (0, 0)); every camera frame is x right, y down, z forward (docs/release.md).
+nlohmann::json views_json(int erp_height, int face_size);
+
+// The 2-D box of each instance an instance image shows (0, the static world and the sky, is left
+// out), in pixel edges: columns x0..x1-1, rows y0..y1-1, sorted by instance. On a panorama a box
+// spans the fewest columns round the circle: x1 <= x0 then means it wraps the seam (columns
+// x0..W-1 and 0..x1-1); a box all the way round is x0 = 0, x1 = W.
+struct InstanceBox {
+  std::uint16_t instance;
+  int x0, y0, x1, y1;
+};
+std::vector<InstanceBox> instance_boxes(ImageView<const std::uint16_t> ids, bool panorama);
 
 nlohmann::json to_json(const SequenceMeta& meta);
 SequenceMeta meta_from_json(const nlohmann::json& json);  // throws std::invalid_argument

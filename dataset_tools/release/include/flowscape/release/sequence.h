@@ -31,7 +31,8 @@ struct Sequence {
   Weather weather;  // randomized(preset, seed): what the sequence's meta.json records
 
   static double time(int frame) { return frame / kFrameRate; }
-  FramePair frame_pair(int frame) const;      // frame -> frame + 1
+  FramePair frame_pair(int frame) const;  // frame -> frame + 1
+  Moment moment(int frame) const;         // the frame's time and rig
   std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
   // The path tracer's settings for this frame: config.spp samples, indirect_spp of them (at most
   // all) gathering indirect light, color_seed(frame).
@@ -52,8 +53,19 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
                            Renderer& renderer, const Projection& camera, const FramePair& pair,
                            int frame, const GroundTruth& truth);
 
-// meta.json of a planned sequence of a release.
+// meta.json of a planned sequence of a release: all but the 2-D boxes, which come from its
+// instance images (meta.h's instance_boxes).
 SequenceMeta sequence_meta(const Sequence& sequence, const SequencePlan& plan,
                            const ReleaseConfig& config);
+// Every actor of the traffic per frame: instance, kind, class, 3-D box in the world and the rig,
+// velocities (docs/release.md, "meta.json").
+nlohmann::json actor_records(const Sequence& sequence, int frames);
+// What a frame's ground truth needs for the layout's kinds: the pair to the next frame, a target in
+// `more` for every other flow step the frame has (layout.h's flow_steps), the vector kinds.
+struct TruthPlan {
+  TruthRequest request;
+  std::vector<int> steps;  // of request.more: its k-th target is frame + steps[k]
+};
+TruthPlan truth_plan(const Sequence& sequence, const Layout& layout, int frame, int frames);
 
 }  // namespace flowscape
