@@ -34,8 +34,10 @@ std::vector<int> parse_gaps(const std::string& text) {
     int gap = 0;
     const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), gap);
     if (error != std::errc() || end != item.data() + item.size() || item.empty())
-      throw std::invalid_argument("--flow-gaps wants whole numbers separated by commas, e.g. 1,2,4 "
-                                  "(got \"" + text + "\")");
+      throw std::invalid_argument(
+          "--flow-gaps wants whole numbers separated by commas, e.g. 1,2,4 "
+          "(got \"" +
+          text + "\")");
     gaps.push_back(gap);
   }
   return gaps;
@@ -101,7 +103,7 @@ int main(int argc, char** argv) {
                  "comma-separated output kinds besides the six every release has (color flow "
                  "semantic instance depth valid): flow_backward (brings valid_backward), "
                  "valid_backward, scene_flow, normal, normal_shading; all; none")
-      ->default_str("flow_backward,valid_backward");
+      ->default_str("flow_backward,valid_backward,scene_flow,normal");
   app.add_option("--flow-gaps", gaps,
                  "comma-separated frame gaps of every flow kind (1 is the next frame; flow_gap<k> "
                  "and, with backward flow, flow_backward_gap<k> for the others)")

@@ -50,14 +50,17 @@ std::string path_of(int fd) {
   _exit(137);  // not reached
 }
 
-int after_open(int fd, const char* path, int flags) {
-  if (fd >= 0 && (flags & O_CREAT) && kill_at("open") && is_kill_file(path, true)) die();
-  return fd;
-}
-
 template <class Function>
 Function real(const char* name) {
   return reinterpret_cast<Function>(dlsym(RTLD_NEXT, name));
+}
+
+// The real `symbol` (open or open64), then death if this creates the file's temporary.
+int open_then_maybe_die(const char* symbol, const char* path, int flags, va_list args) {
+  const mode_t mode = (flags & O_CREAT) ? mode_t(va_arg(args, int)) : 0;
+  const int fd = real<int (*)(const char*, int, ...)>(symbol)(path, flags, mode);
+  if (fd >= 0 && (flags & O_CREAT) && kill_at("open") && is_kill_file(path, true)) die();
+  return fd;
 }
 
 }  // namespace
@@ -65,19 +68,17 @@ Function real(const char* name) {
 extern "C" int open(const char* path, int flags, ...) {
   va_list args;
   va_start(args, flags);
-  const mode_t mode = (flags & O_CREAT) ? mode_t(va_arg(args, int)) : 0;
+  const int fd = open_then_maybe_die("open", path, flags, args);
   va_end(args);
-  static const auto real_open = real<int (*)(const char*, int, ...)>("open");
-  return after_open(real_open(path, flags, mode), path, flags);
+  return fd;
 }
 
 extern "C" int open64(const char* path, int flags, ...) {
   va_list args;
   va_start(args, flags);
-  const mode_t mode = (flags & O_CREAT) ? mode_t(va_arg(args, int)) : 0;
+  const int fd = open_then_maybe_die("open64", path, flags, args);
   va_end(args);
-  static const auto real_open = real<int (*)(const char*, int, ...)>("open64");
-  return after_open(real_open(path, flags, mode), path, flags);
+  return fd;
 }
 
 extern "C" ssize_t write(int fd, const void* data, size_t size) {

@@ -72,7 +72,8 @@ TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec
   Vec3 target_direction = direction;  // world frame, seen from the rig at the target's time
   double target_distance = std::numeric_limits<double>::infinity();
   if (hit.found) {
-    truth.moved = c.scene.pose_at_target(k, hit.mesh) * (c.scene.world_to_object_now(hit.mesh) * point);
+    truth.moved =
+        c.scene.pose_at_target(k, hit.mesh) * (c.scene.world_to_object_now(hit.mesh) * point);
     target_direction = truth.moved - target_origin;
     target_distance = target_direction.norm();
     target_direction /= target_distance;
@@ -113,10 +114,9 @@ void put_normals(const TruthContext& c, const Hit& hit, const Vec3& direction, V
   if (c.request.shading_normal) {
     const Vec3 point = origin + hit.distance * direction;
     const double footprint = c.projection.pixel_spread(pixel) * hit.distance;
-    const TexturedLook look =
-        is_textured(c.scene, hit)
-            ? textured_look(c.scene, c.images, hit, point, direction, footprint)
-            : TexturedLook{};
+    const TexturedLook look = is_textured(c.scene, hit) ? textured_look(c.scene, c.images, hit,
+                                                                        point, direction, footprint)
+                                                        : TexturedLook{};
     const Surface surface =
         surface_at(c.scene, hit, origin, direction, is_textured(c.scene, hit) ? &look : nullptr);
     put_vector(out.shading_normal, x, y, c.world_to_camera * surface.normal);
@@ -130,9 +130,8 @@ void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int
   const Vec3 direction = (rig.linear() * c.projection.ray(pixel)).normalized();
   const Hit hit = c.scene.intersect(origin, direction);
   *out.depth.pixel(x, y) = float(hit.distance);
-  *out.semantic.pixel(x, y) =
-      std::uint8_t(hit.found ? c.scene.mesh(hit.mesh).mesh->classes[hit.triangle]
-                             : SemanticClass::Sky);
+  *out.semantic.pixel(x, y) = std::uint8_t(
+      hit.found ? c.scene.mesh(hit.mesh).mesh->classes[hit.triangle] : SemanticClass::Sky);
   *out.instance.pixel(x, y) = hit.found ? c.scene.mesh(hit.mesh).instance : 0;
   const Vec3 point = origin + hit.distance * direction;
   for (std::size_t k = 0; k < c.targets.size(); ++k) {
@@ -143,11 +142,12 @@ void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int
     }
     put_flow(out.flow, out.valid, x, y, target);
     if (c.request.scene_flow)
-      put_vector(out.scene_flow, x, y,
-                 hit.found ? Vec3(c.world_to_camera * (target.moved - point))
-                           : Vec3::Constant(kNoVector));
+      put_vector(
+          out.scene_flow, x, y,
+          hit.found ? Vec3(c.world_to_camera * (target.moved - point)) : Vec3::Constant(kNoVector));
   }
-  if (c.request.normal || c.request.shading_normal) put_normals(c, hit, direction, pixel, out, x, y);
+  if (c.request.normal || c.request.shading_normal)
+    put_normals(c, hit, direction, pixel, out, x, y);
 }
 
 // Images of width x height for everything `request` asks for.
@@ -166,7 +166,11 @@ GroundTruth allocate_truth(const TruthRequest& request, int width, int height) {
 TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
                            const Projection& projection, const TruthRequest& request,
                            FlowMode mode) {
-  TruthContext c{scene, images, projection, request, mode,
+  TruthContext c{scene,
+                 images,
+                 projection,
+                 request,
+                 mode,
                  {{request.pair.next_time, request.pair.next_rig}},
                  (request.pair.rig.linear() * projection.camera_to_rig()).transpose()};
   c.targets.insert(c.targets.end(), request.more.begin(), request.more.end());

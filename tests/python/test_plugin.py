@@ -339,6 +339,12 @@ def test_every_kind_of_the_layout_is_there_as_its_row_says(all_kinds_release):
     assert (np.einsum("ij,ij->i", normal, ray[~sky]) <= 1e-6).all()
     bottom = io.read_image(layout.frame_file("map00_seq00", "normal", 1))[-1]
     assert np.median(bottom[:, 1]) < -0.99
+    # the shading normal: unit length too, bent away from the geometric one by smoothing and the
+    # textures' bumps on some surfaces, equal to it on flat untextured ones
+    shading = io.read_image(layout.frame_file("map00_seq00", "normal_shading", 1))[~sky]
+    assert np.abs(np.linalg.norm(shading, axis=1) - 1).max() < 1e-5
+    bent = np.linalg.norm(shading - normal, axis=1) > 1e-3
+    assert 0 < bent.mean() < 1
 
 
 def test_forward_and_backward_flow_of_a_release_agree(all_kinds_release):

@@ -1,11 +1,11 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
+#include "flowscape/core/files.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/quality/flow_datasets.h"
 #include "flowscape/quality/gt_quality.h"
-#include "flowscape/core/files.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
 #include "shifted_pattern.h"

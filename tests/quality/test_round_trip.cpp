@@ -8,7 +8,8 @@ namespace {
 
 Image<float> constant(int W, int H, float u, float v) {
   Image<float> flow(W, H, 2);
-  for (std::size_t i = 0; i < flow.pixel_count(); ++i) flow.data[2 * i] = u, flow.data[2 * i + 1] = v;
+  for (std::size_t i = 0; i < flow.pixel_count(); ++i)
+    flow.data[2 * i] = u, flow.data[2 * i + 1] = v;
   return flow;
 }
 
@@ -26,7 +27,8 @@ TEST_CASE("a shift and its reverse return every pixel visible both ways, and onl
   Image<std::uint8_t> visible = ones(W, H), back_visible = ones(W, H);
   // pinhole: targets off the right edge (x + 0.5 + 2.25 >= 16: x >= 14) and below the last row
   // (y = 7) do not count: 14 x 7 pixels
-  RoundTrip trip = round_trip({forward.view(), visible.view(), backward.view(), back_visible.view()});
+  RoundTrip trip =
+      round_trip({forward.view(), visible.view(), backward.view(), back_visible.view()});
   CHECK(trip.both_ways == 14 * 7);
   CHECK(trip.returned == 14 * 7);
   // a panorama wraps: columns 14 and 15 land on 0 and 1

@@ -101,3 +101,22 @@ TEST_CASE("the resolution option takes the height or HEIGHTxWIDTH") {
   for (const char* bad : {"", "x", "abc", "64x", "x128", "64x128x", "-5x-10", "99999999999"})
     CHECK_THROWS_WITH(parse_resolution(bad), Catch::Contains("--resolution wants the height"));
 }
+
+TEST_CASE("outputs and flow gaps are checked like every other key") {
+  const auto refused = [](const char* json, const char* message) {
+    CHECK_THROWS_WITH(release_config_from_json(nlohmann::json::parse(json)),
+                      Catch::Contains(message));
+  };
+  refused(R"({"outputs": ["normals"]})", "unknown output kind \"normals\" (pick from: all,");
+  refused(R"({"outputs": ["depth"]})", "unknown output kind \"depth\"");
+  refused(R"({"flow_gaps": [1, 2.5]})", "\"flow_gaps\" must be an integer (got 2.5)");
+  refused(R"({"flow_gaps": 2})", "\"flow_gaps\" must be a list of integers");
+  refused(R"({"flow_gaps": [2]})", "flow gaps must include 1");
+  refused(R"({"flow_gaps": [1, 100], "frames": 100})", "flow gap 100 needs more than 100 frames");
+  const ReleaseConfig c = release_config_from_json(
+      nlohmann::json::parse(R"({"outputs": ["all"], "flow_gaps": [1, 3]})"));
+  CHECK(release_layout(c).kinds.size() ==
+        kOutputKinds.size() + 4);  // flow, valid and backward at 3
+  CHECK(to_json(c)["flow_gaps"] == nlohmann::json{1, 3});
+  CHECK(release_layout(ReleaseConfig{}).has("flow_backward"));
+}

@@ -86,7 +86,8 @@ TEST_CASE("a layout holds the six, the picked kinds and each per-gap kind at eve
   CHECK(layout.flow_steps(3, 10) == std::vector<int>{1, 2, 4, -1, -2});
   CHECK(layout.flow_steps(9, 10) == std::vector<int>{-1, -2, -4});
   CHECK(Layout::of({"all"}, {1}, true).kinds.size() == kOutputKinds.size());
-  CHECK_THROWS_WITH(Layout::of({"color"}, {1}, true), Catch::Contains("unknown output kind \"color\""));
+  CHECK_THROWS_WITH(Layout::of({"color"}, {1}, true),
+                    Catch::Contains("unknown output kind \"color\""));
   CHECK_THROWS_WITH(Layout::of({"normals"}, {1}, true),
                     Catch::Contains("pick from: all, flow_backward, valid_backward"));
   CHECK_THROWS_WITH(Layout::of({}, {2}, true), Catch::Contains("flow gaps must include 1"));

@@ -77,7 +77,7 @@ TEST_CASE("2-D boxes span each instance's pixels; on a panorama the short way ro
   };
   CHECK(same(boxes[0], 3, 2, 1, 5, 3));
   CHECK(same(boxes[1], 5, 7, 0, 13, 4));
-  CHECK(same(boxes[2], 9, 14, 0, 2, 1));  // x1 <= x0: wraps
+  CHECK(same(boxes[2], 9, 14, 0, 2, 1));      // x1 <= x0: wraps
   boxes = instance_boxes(ids.view(), false);  // a pinhole image does not wrap
   CHECK(same(boxes[2], 9, 0, 0, 16, 1));
   paint(9, 0, 16, 2, 3);  // all the way round
@@ -91,7 +91,8 @@ TEST_CASE("views record each camera's K and pose in the rig") {
   const nlohmann::json& front = views["cube/front"];
   CHECK(front["K"] == nlohmann::json{{4.0, 0, 3.5}, {0, 4.0, 3.5}, {0, 0, 1}});
   // the front camera's z (forward) is the rig's x, its x (right) the rig's -y
-  CHECK(front["camera_to_rig"] == nlohmann::json{{0.0, 0.0, 1.0}, {-1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}});
+  CHECK(front["camera_to_rig"] ==
+        nlohmann::json{{0.0, 0.0, 1.0}, {-1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}});
   CHECK(views["cube/up"]["camera_to_rig"][2][2] == 1.0);  // looks along the rig's z
   CHECK_FALSE(views_json(16, 0).contains("cube/front"));
 }

@@ -76,10 +76,10 @@ TEST_CASE("every actor's recorded box holds its vertices and its velocity is its
       const Vec3 local = actor.pose(t).inverse() * centre;
       const Vec3 finite = (actor.pose(t + h) * local - actor.pose(t - h) * local) / (2 * h);
       CHECK((column("velocity") - finite).norm() < 0.05);
-      const double yaw_rate = Eigen::AngleAxisd(actor.pose(t + h).linear() *
-                                                actor.pose(t - h).linear().transpose())
-                                  .angle() /
-                              (2 * h);
+      const double yaw_rate =
+          Eigen::AngleAxisd(actor.pose(t + h).linear() * actor.pose(t - h).linear().transpose())
+              .angle() /
+          (2 * h);
       CHECK(column("angular_velocity").norm() == Approx(yaw_rate).margin(0.01));
       // the rig frame's box is the world's seen from the rig then
       const Vec3 in_rig = s.city.rig(t).inverse() * centre;

@@ -61,7 +61,9 @@ TEST_CASE("the writer makes every file of the layout, each as its row of the tab
       }
       ++files;
     }
-  CHECK(files == 7 * (6 + 6 + 4 + 2 * 2));  // and backward flow and valid from frame 1 on
+  // per view: the six (the last frame four), normal on every frame, scene flow on frames 0 and 1,
+  // backward flow and valid on frames 1 and 2
+  CHECK(files == 7 * ((6 + 6 + 4) + 3 + 2 + 2 * 2));
 }
 
 // The sky is at infinity: its flow is the rig's rotation only, derived here from the poses that

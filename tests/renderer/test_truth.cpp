@@ -16,8 +16,7 @@ constexpr double kDt = 1 / kFrameRate;
 
 // A rig that drives forward at 3 m/s, drifts left at 1 m/s and yaws left at 0.3 rad/s.
 Pose driving_rig(double t) {
-  return Pose(Eigen::Translation3d(3 * t, 1 * t, 0) *
-              Eigen::AngleAxisd(0.3 * t, Vec3::UnitZ()));
+  return Pose(Eigen::Translation3d(3 * t, 1 * t, 0) * Eigen::AngleAxisd(0.3 * t, Vec3::UnitZ()));
 }
 
 // The flow from the frame at t to the frame at t + step frames, with the rig of `rig`.
@@ -29,8 +28,11 @@ TruthRequest request(double t, int step, Pose (*rig)(double) = driving_rig) {
 // A room with a box sliding across it: static world and a moving actor.
 Scene room_with_actor() { return moving_box({6, 1.5, -1}, {-2, 4, 0.5}); }
 
-// u of a flow, the short way round on an ERP of width W.
+// u of a flow, the short way round on an ERP of width W (0: a pinhole, no wrap).
 double wrap(double u, int W) { return W ? u - W * std::round(u / W) : u; }
+int wrap_width(const Projection& p) {
+  return p.kind == Projection::Kind::Equirectangular ? p.width : 0;
+}
 
 struct View {
   const char* name;
@@ -53,7 +55,7 @@ TEST_CASE("forward then backward flow returns to the start on every pixel visibl
   for (const View& view : views()) {
     INFO(view.name);
     const Projection& p = view.projection;
-    const int W = p.kind == Projection::Kind::Equirectangular ? p.width : 0;
+    const int W = wrap_width(p);
     const double t = 0.2;
     const GroundTruth forward = renderer.ground_truth(p, request(t, 1));
     std::vector<Vec2> sources, targets;
@@ -110,8 +112,8 @@ TEST_CASE("flow over a gap of k frames of a camera passing a wall is k times the
   const double f = N / 2.0, t = 1;
   for (int k : {1, 2, 4, -1, -3}) {
     INFO("gap " << k);
-    const GroundTruth gt = renderer.ground_truth(
-        p, {{t, t + k * kDt, sideways(t), sideways(t + k * kDt)}});
+    const GroundTruth gt =
+        renderer.ground_truth(p, {{t, t + k * kDt, sideways(t), sideways(t + k * kDt)}});
     const double u = -f * 0.6 * k * kDt / 10;
     for (int y = 0; y < N; ++y)
       for (int x = 0; x < N; ++x) {
@@ -128,7 +130,7 @@ TEST_CASE("flow over k frames is the composition of k one-frame flows where the 
   for (const View& view : views()) {
     INFO(view.name);
     const Projection& p = view.projection;
-    const int W = p.kind == Projection::Kind::Equirectangular ? p.width : 0;
+    const int W = wrap_width(p);
     const double t = 0.1;
     const int k = 4;
     const GroundTruth gap = renderer.ground_truth(p, request(t, k));
@@ -151,9 +153,9 @@ TEST_CASE("flow over k frames is the composition of k one-frame flows where the 
       const int x = int(start[i].x()), y = int(start[i].y());
       if (!seen[i] || !*gap.valid.pixel(x, y)) continue;
       const float* g = gap.flow.pixel(x, y);
-      worst = std::max(worst, Vec2(wrap(start[i].x() + g[0] - at[i].x(), W),
-                                   start[i].y() + g[1] - at[i].y())
-                                  .norm());
+      worst = std::max(
+          worst,
+          Vec2(wrap(start[i].x() + g[0] - at[i].x(), W), start[i].y() + g[1] - at[i].y()).norm());
       ++compared;
     }
     CHECK(compared > int(at.size() / 2));
@@ -174,9 +176,10 @@ TEST_CASE("a pixel's point plus its scene flow, seen by the camera at t + 1, is 
     const GroundTruth gt = renderer.ground_truth(p, asked);
     REQUIRE(gt.scene_flow.channels == 3);
     // the camera frame (x right, y down, z forward) in the rig, written out by hand
-    const int face = erp ? 0 : int(view.name == std::string("front")  ? Face::Front
-                                   : view.name == std::string("left") ? Face::Left
-                                                                      : Face::Down);
+    const int face = erp ? 0
+                         : int(view.name == std::string("front")  ? Face::Front
+                               : view.name == std::string("left") ? Face::Left
+                                                                  : Face::Down);
     const indep::Axes& axes = indep::faces()[face];
     Mat3 camera_to_rig;
     camera_to_rig << axes.right.x, axes.down.x, axes.forward.x, axes.right.y, axes.down.y,
@@ -267,8 +270,9 @@ TEST_CASE("a tilted plane's normal is its analytic normal, whatever the pixel") 
   Scene scene;
   const Vec3 n(-std::cos(a), 0, std::sin(a)), along(std::sin(a), 0, std::cos(a));
   const Vec3 c(8, 0, 0), side(0, 1, 0);
-  for (const Vec3& corner : std::vector<Vec3>{c - 20 * along - 20 * side, c + 20 * along - 20 * side,
-                                              c + 20 * along + 20 * side, c - 20 * along + 20 * side})
+  for (const Vec3& corner :
+       std::vector<Vec3>{c - 20 * along - 20 * side, c + 20 * along - 20 * side,
+                         c + 20 * along + 20 * side, c - 20 * along + 20 * side})
     scene.world.vertices.push_back(corner.cast<float>());
   scene.world.triangles = {{0, 2, 1}, {0, 3, 2}};
   scene.world.classes = {SemanticClass::Wall, SemanticClass::Wall};

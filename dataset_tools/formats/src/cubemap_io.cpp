@@ -87,8 +87,7 @@ void write_cube_image(const std::filesystem::path& cube_dir, const std::string& 
 }
 
 void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
-                     const std::string& file_name,
-                     ImageView<const float> stack) {
+                     const std::string& file_name, ImageView<const float> stack) {
   for (Face face : kFaces)
     write_flow(cube_file(cube_dir, face, modality, file_name), face_view(stack, face));
 }

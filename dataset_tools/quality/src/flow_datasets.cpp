@@ -41,15 +41,16 @@ fs::path with_stem_suffix(const fs::path& file, const std::string& from, const s
 // What gt_quality reads a flow as: target - source in pixels, u right, v down (photoconsistency.h).
 void check_conventions(const nlohmann::json& conventions, const fs::path& manifest) {
   if (conventions.is_null()) return;  // before conventions were recorded: FlowScape's
-  const nlohmann::json flow = conventions.is_object() ? conventions.value("flow", nlohmann::json())
-                                                      : nlohmann::json();
+  const nlohmann::json flow =
+      conventions.is_object() ? conventions.value("flow", nlohmann::json()) : nlohmann::json();
   const auto says = [&](const char* key, const char* value) {
     return flow.is_object() && flow.value(key, "") == value;
   };
   if (!says("value", "target - source") || !says("units", "pixels") || !says("u", "right") ||
       !says("v", "down") || !(says("erp_seam", "360") || says("erp_seam", "classic")))
-    throw FileError(manifest, "conventions: flow is not target - source in pixels with u right, "
-                              "v down and a 360 or classic seam; gt_quality cannot score it");
+    throw FileError(manifest,
+                    "conventions: flow is not target - source in pixels with u right, "
+                    "v down and a 360 or classic seam; gt_quality cannot score it");
 }
 
 // The layout a release states (checking its conventions), or FlowScape's six without a manifest.
@@ -83,9 +84,9 @@ FlowDataset flowscape_release(const fs::path& root) {
         return seq / frame_file(kind, std::nullopt, frame);
       };
       if (!fs::exists(file(flow, f))) continue;
-      PairFiles pair{file(color, f),         file(color, f + 1),    file(flow, f),
-                     file(valid, f),         VisibleMask::NonZero,  seq.filename().string(),
-                     meta.weather_preset(), true};
+      PairFiles pair{
+          file(color, f),       file(color, f + 1),      file(flow, f),         file(valid, f),
+          VisibleMask::NonZero, seq.filename().string(), meta.weather_preset(), true};
       if (backward)
         pair.backward = file(back, f + 1), pair.backward_visible = file(back_valid, f + 1);
       d.pairs.push_back(pair);

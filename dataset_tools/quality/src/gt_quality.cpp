@@ -73,8 +73,8 @@ RoundTrip check_round_trip(const PairFiles& pair, const Flow& forward,
     throw FileError(pair.backward, "backward flow's size differs from the forward flow's");
   if (back_visible.width != forward.uv.width || back_visible.height != forward.uv.height)
     throw FileError(pair.backward_visible, "mask size differs from the flow's");
-  return round_trip({forward.uv.view(), visible.view(), backward.uv.view(), back_visible.view(),
-                     pair.panorama});
+  return round_trip(
+      {forward.uv.view(), visible.view(), backward.uv.view(), back_visible.view(), pair.panorama});
 }
 
 PairResult evaluate_pair(const PairFiles& pair, const QualityOptions& options) {
@@ -121,7 +121,8 @@ void add(QualityRow& row, const PairResult& r, bool has_visible) {
 
 void finish(QualityRow& row) {
   if (row.pairs) row.pe /= row.pairs, row.wpe /= row.pairs;
-  if (row.visible_pairs) row.wpe_visible /= row.visible_pairs, row.wpe_occluded /= row.visible_pairs;
+  if (row.visible_pairs)
+    row.wpe_visible /= row.visible_pairs, row.wpe_occluded /= row.visible_pairs;
   row.diff = diff_percent(row.pe, row.wpe);
 }
 
@@ -187,8 +188,8 @@ std::string report_table(const QualityReport& report) {
                       occ = measure(r.visible_pairs, r.wpe_occluded, "%.2f"),
                       trip = measure(r.round_trip_pairs, 100 * r.round_trip_share(), "%.2f%%");
     std::snprintf(line, sizeof line, "%-36s %6d %8.2f %8.2f %7.1f%%  %-10s %10s %10s %8s\n",
-                  r.name.c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff),
-                  noc.c_str(), occ.c_str(), trip.c_str());
+                  r.name.c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff), noc.c_str(),
+                  occ.c_str(), trip.c_str());
     out << line;
   }
   return out.str();

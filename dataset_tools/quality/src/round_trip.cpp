@@ -15,9 +15,7 @@ Vec2 sample(ImageView<const float> image, double px, double py, bool panorama) {
   const double x = px - 0.5, y = std::clamp(py - 0.5, 0.0, double(H - 1));
   const int x0 = int(std::floor(x)), y0 = std::min(int(y), H - 1), y1 = std::min(y0 + 1, H - 1);
   const double fx = x - x0, fy = y - y0;
-  const auto column = [&](int c) {
-    return panorama ? ((c % W) + W) % W : std::clamp(c, 0, W - 1);
-  };
+  const auto column = [&](int c) { return panorama ? ((c % W) + W) % W : std::clamp(c, 0, W - 1); };
   const auto at = [&](int c, int r) {
     const float* p = image.pixel(column(c), r);
     return Vec2(p[0], p[1]);

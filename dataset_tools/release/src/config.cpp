@@ -38,7 +38,8 @@ T checked_value(const nlohmann::json& value, const char* key) {
     return json_integer<T>(value, key);
   else if constexpr (std::is_same_v<T, std::vector<int>>) {
     if (!value.is_array())
-      throw std::invalid_argument("\"" + std::string(key) + "\" must be a list of integers");
+      throw std::invalid_argument(
+          std::string(1, '"').append(key).append("\" must be a list of integers"));
     T numbers;
     for (const nlohmann::json& number : value) numbers.push_back(json_integer<int>(number, key));
     return numbers;
@@ -81,9 +82,7 @@ void validate(const ReleaseConfig& c) {
                                                                    std::to_string(c.shards) + ")");
 }
 
-Layout release_layout(const ReleaseConfig& c) {
-  return Layout::of(c.outputs, c.flow_gaps, c.cube);
-}
+Layout release_layout(const ReleaseConfig& c) { return Layout::of(c.outputs, c.flow_gaps, c.cube); }
 
 std::string config_differences(const nlohmann::json& first, const std::string& first_name,
                                const nlohmann::json& second, const std::string& second_name) {

@@ -75,8 +75,7 @@ std::string ReleaseKind::name() const {
 }
 
 std::string ReleaseKind::folder() const {
-  return std::string(row->folder) +
-         (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
+  return std::string(row->folder) + (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
 }
 
 bool ReleaseKind::has_frame(int frame, int frames) const {
@@ -121,16 +120,13 @@ Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>
                                   std::to_string(kMaxFlowGap) + ")");
   const bool all = std::find(picked.begin(), picked.end(), "all") != picked.end();
   for (const std::string& name : picked)
-    if (name != "all" && (!release_kind(name) || release_kind(name)->gap != 1 ||
-                          output_kind(name).always))
-      throw std::invalid_argument("unknown output kind \"" + name + "\" (pick from: all, " +
-                                  [] {
-                                    std::string list;
-                                    for (const std::string& k : pickable_kinds())
-                                      list += (list.empty() ? "" : ", ") + k;
-                                    return list;
-                                  }() +
-                                  ")");
+    if (name != "all" &&
+        (!release_kind(name) || release_kind(name)->gap != 1 || output_kind(name).always))
+      throw std::invalid_argument("unknown output kind \"" + name + "\" (pick from: all, " + [] {
+        std::string list;
+        for (const std::string& k : pickable_kinds()) list += (list.empty() ? "" : ", ") + k;
+        return list;
+      }() + ")");
   std::vector<int> sorted = gaps;
   std::sort(sorted.begin(), sorted.end());
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
@@ -266,8 +262,9 @@ nlohmann::json conventions_json() {
       {"flow",
        {{"value", "target - source"},
         {"source", "the pixel of frame F"},
-        {"target", "where its surface point (fixed on its object) is seen in frame F + step, "
-                   "step = the kind's step in layout.kinds (forward > 0, backward < 0)"},
+        {"target",
+         "where its surface point (fixed on its object) is seen in frame F + step, "
+         "step = the kind's step in layout.kinds (forward > 0, backward < 0)"},
         {"units", "pixels"},
         {"channels", {"u", "v"}},
         {"u", "right"},

@@ -45,8 +45,9 @@ nlohmann::json views_json(int erp_height, int face_size) {
        {{"model", "equirectangular"},
         {"width", W},
         {"height", erp_height},
-        {"longitude", "phi = 2 pi x / W - pi, x the continuous column (pixel i's centre at i + "
-                      "0.5); phi = 0 looks forward (rig x), phi grows to the right"},
+        {"longitude",
+         "phi = 2 pi x / W - pi, x the continuous column (pixel i's centre at i + "
+         "0.5); phi = 0 looks forward (rig x), phi grows to the right"},
         {"latitude", "theta = pi y / H - pi / 2, growing downwards"},
         {"ray_in_rig", "(cos theta cos phi, -cos theta sin phi, -sin theta)"},
         {"camera_to_rig", matrix_rows(face_rotation(Face::Front))},
@@ -74,7 +75,8 @@ std::pair<int, int> column_span(const std::vector<bool>& columns, bool panorama)
   const int W = int(columns.size());
   const int first = int(std::find(columns.begin(), columns.end(), true) - columns.begin());
   if (!panorama) {
-    const int last = W - 1 - int(std::find(columns.rbegin(), columns.rend(), true) - columns.rbegin());
+    const int last =
+        W - 1 - int(std::find(columns.rbegin(), columns.rend(), true) - columns.rbegin());
     return {first, last + 1};
   }
   int gap_start = 0, gap = 0, run_start = 0, run = 0;
@@ -117,7 +119,6 @@ std::vector<InstanceBox> instance_boxes(ImageView<const std::uint16_t> ids, bool
   return boxes;
 }
 
-
 std::string SequenceMeta::weather_preset() const { return weather.at("preset").get<std::string>(); }
 
 std::string SequenceMeta::base_weather() const {
@@ -152,8 +153,8 @@ nlohmann::json to_json(const SequenceMeta& m) {
     for (Face face : kFaces) faces.push_back(face_name(face));
     j["cube"] = {{"face_size", m.face_size}, {"focal", m.face_size / 2.0}, {"faces", faces}};
   }
-  for (const auto& [key, record] : {std::pair{"views", &m.views}, {"actors", &m.actors},
-                                    {"boxes_2d", &m.boxes}})
+  for (const auto& [key, record] :
+       {std::pair{"views", &m.views}, {"actors", &m.actors}, {"boxes_2d", &m.boxes}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }

@@ -94,7 +94,9 @@ namespace {
 // Micrometres and microradians: far below what the scene's float vertices hold, and short JSON.
 double rounded(double value) { return std::round(value * 1e6) / 1e6; }
 
-nlohmann::json vector_json(const Vec3& v) { return {rounded(v.x()), rounded(v.y()), rounded(v.z())}; }
+nlohmann::json vector_json(const Vec3& v) {
+  return {rounded(v.x()), rounded(v.y()), rounded(v.z())};
+}
 
 // Appends a box pose's centre, heading (the yaw of its x axis) and rotation (a unit quaternion w,
 // x, y, z) to the actor's columns, for a box pose in the world or (suffix "_rig") in the rig.

@@ -28,8 +28,7 @@ template <class T>
 void write_cube_image(const std::filesystem::path& cube_dir, const std::string& modality,
                       const std::string& file_name, ImageView<const T> stack);
 void write_cube_flow(const std::filesystem::path& cube_dir, const std::string& modality,
-                     const std::string& file_name,
-                     ImageView<const float> stack);
+                     const std::string& file_name, ImageView<const float> stack);
 
 // File names (sorted) of one modality of the front face; empty when the folder is missing.
 std::vector<std::string> cube_frame_files(const std::filesystem::path& cube_dir,

@@ -29,11 +29,12 @@ struct ReleaseConfig {
   // glTF through tinygltf, OBJ/FBX/... through assimp, with their textures.
   std::map<std::string, std::string> models;
   std::uint64_t seed = 0;
-  bool cube = true;           // also write the six faces (the ERP colour is stitched from them)
+  bool cube = true;  // also write the six faces (the ERP colour is stitched from them)
   // Output kinds written besides the six every release has (layout.h's pickable rows, or "all"),
   // and the frame gaps of every flow kind (1 = the flow to the next frame; must be there). The
-  // default is what bench_render found cheap next to the colour (docs/release.md).
-  std::vector<std::string> outputs{"flow_backward", "valid_backward"};
+  // default is what bench_outputs found cheap next to the colour (docs/release.md): 11 % of a
+  // frame's colour time together; normal_shading (23 %) and more gaps are asked for.
+  std::vector<std::string> outputs{"flow_backward", "valid_backward", "scene_flow", "normal"};
   std::vector<int> flow_gaps{1};
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };

@@ -39,8 +39,8 @@ struct OutputKind {
   Resampling resampling;
   bool erp, cube;  // written for the ERP view, for every cube face
   Direction direction;
-  bool per_gap;    // one kind per gap of the release's flow gaps (ReleaseKind)
-  bool always;     // in every release (the FlowScape six); the others are picked (--outputs)
+  bool per_gap;  // one kind per gap of the release's flow gaps (ReleaseKind)
+  bool always;   // in every release (the FlowScape six); the others are picked (--outputs)
   std::string_view description;  // for the dataset card and docs
 
   constexpr bool is_flow() const { return resampling == Resampling::Flow; }
@@ -102,9 +102,7 @@ struct ReleaseKind {
   // For a flow kind, the mask of its targets (flow -> valid, flow_backward_gap2 ->
   // valid_backward_gap2).
   ReleaseKind valid_kind() const;
-  bool operator==(const ReleaseKind& other) const {
-    return row == other.row && gap == other.gap;
-  }
+  bool operator==(const ReleaseKind& other) const { return row == other.row && gap == other.gap; }
 };
 // The flow kind of a frame step: +k forward at gap k, -k backward at gap k.
 ReleaseKind flow_kind_of_step(int step);
@@ -123,8 +121,7 @@ struct Layout {
 
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.
   // Throws std::invalid_argument naming what is wrong.
-  static Layout of(const std::vector<std::string>& picked, const std::vector<int>& gaps,
-                   bool cube);
+  static Layout of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube);
   const ReleaseKind* find(std::string_view name) const;  // null when the release lacks it
   bool has(std::string_view name) const { return find(name) != nullptr; }
   // Every file of one frame, relative to the sequence folder.

@@ -31,8 +31,8 @@ struct Sequence {
   Weather weather;  // randomized(preset, seed): what the sequence's meta.json records
 
   static double time(int frame) { return frame / kFrameRate; }
-  FramePair frame_pair(int frame) const;  // frame -> frame + 1
-  Moment moment(int frame) const;         // the frame's time and rig
+  FramePair frame_pair(int frame) const;      // frame -> frame + 1
+  Moment moment(int frame) const;             // the frame's time and rig
   std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
   // The path tracer's settings for this frame: config.spp samples, indirect_spp of them (at most
   // all) gathering indirect light, color_seed(frame).
