@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "embree_scene.h"
 #include "flowscape/stitcher/geometry.h"
@@ -114,11 +115,10 @@ void put_normals(const TruthContext& c, const Hit& hit, const Vec3& direction, V
   if (c.request.shading_normal) {
     const Vec3 point = origin + hit.distance * direction;
     const double footprint = c.projection.pixel_spread(pixel) * hit.distance;
-    const TexturedLook look = is_textured(c.scene, hit) ? textured_look(c.scene, c.images, hit,
-                                                                        point, direction, footprint)
-                                                        : TexturedLook{};
-    const Surface surface =
-        surface_at(c.scene, hit, origin, direction, is_textured(c.scene, hit) ? &look : nullptr);
+    std::optional<TexturedLook> look;
+    if (is_textured(c.scene, hit))
+      look = textured_look(c.scene, c.images, hit, point, direction, footprint);
+    const Surface surface = surface_at(c.scene, hit, origin, direction, look ? &*look : nullptr);
     put_vector(out.shading_normal, x, y, c.world_to_camera * surface.normal);
   }
 }

@@ -111,6 +111,22 @@ bool has_frame(const ReleaseKind& kind, int frame, int frames) {
   return kind.has_frame(frame, frames);
 }
 
+namespace {
+
+// A picked name must be a row that is not in every release, at gap 1, or "all".
+void check_picked(const std::vector<std::string>& picked) {
+  for (const std::string& name : picked) {
+    const std::optional<ReleaseKind> kind = release_kind(name);
+    if (name == "all" || (kind && kind->gap == 1 && !kind->row->always)) continue;
+    std::string choices = "all";
+    for (const std::string& k : pickable_kinds()) choices += ", " + k;
+    throw std::invalid_argument("unknown output kind \"" + name + "\" (pick from: " + choices +
+                                ")");
+  }
+}
+
+}  // namespace
+
 Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube) {
   if (std::find(gaps.begin(), gaps.end(), 1) == gaps.end())
     throw std::invalid_argument("flow gaps must include 1 (the flow every tool reads)");
@@ -118,15 +134,8 @@ Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>
     if (gap < 1 || gap > kMaxFlowGap)
       throw std::invalid_argument("flow gap " + std::to_string(gap) + " is out of range (1.." +
                                   std::to_string(kMaxFlowGap) + ")");
+  check_picked(picked);
   const bool all = std::find(picked.begin(), picked.end(), "all") != picked.end();
-  for (const std::string& name : picked)
-    if (name != "all" &&
-        (!release_kind(name) || release_kind(name)->gap != 1 || output_kind(name).always))
-      throw std::invalid_argument("unknown output kind \"" + name + "\" (pick from: all, " + [] {
-        std::string list;
-        for (const std::string& k : pickable_kinds()) list += (list.empty() ? "" : ", ") + k;
-        return list;
-      }() + ")");
   std::vector<int> sorted = gaps;
   std::sort(sorted.begin(), sorted.end());
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
