@@ -237,7 +237,9 @@ void trace_bundle(const FrameContext& frame, PixelLooks& camera_looks, PathState
   Hit hits[kBundleSize];
   SunRay sun[kBundleSize];
   bool blocked[kBundleSize];
-  for (int i = 0; i < count; ++i) bundle[i] = {paths[i].origin, paths[i].dir, true};
+  // a sample outside a lens's image has no ray (zero) and no light
+  for (int i = 0; i < count; ++i)
+    bundle[i] = {paths[i].origin, paths[i].dir, !paths[i].dir.isZero()};
   for (int bounce = 0; bounce <= max_bounces; ++bounce) {
     const int alive = int(std::count_if(bundle, bundle + count, [](auto& r) { return r.active; }));
     if (alive == 0) break;

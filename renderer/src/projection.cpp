@@ -17,25 +17,56 @@ Projection Projection::equirectangular(int height) {
   return {Kind::Equirectangular, 2 * height, height, Mat3::Identity(), 0};
 }
 
+Projection Projection::of_lens(std::shared_ptr<const Lens> lens, const Mat3& camera_to_rig) {
+  const int W = lens->width(), H = lens->height();
+  return {Kind::Lens, W, H, camera_to_rig, 0, std::move(lens)};
+}
+
+bool Projection::covers(Vec2 pixel) const {
+  return kind != Kind::Lens || lens->ray(pixel).has_value();
+}
+
 Mat3 Projection::camera_to_rig() const {
   return kind == Kind::Equirectangular ? face_rotation(Face::Front) : rotation;
 }
 
 Vec3 Projection::ray(Vec2 pixel) const {
   if (kind == Kind::Equirectangular) return direction_from_erp(pixel, width);
+  if (kind == Kind::Lens) {
+    const std::optional<Vec3> ray = lens->ray(pixel);
+    return ray ? Vec3(rotation * *ray) : Vec3::Zero();
+  }
   return rotation * Vec3((pixel.x() - width / 2.0) / focal, (pixel.y() - height / 2.0) / focal, 1);
 }
 
 std::optional<Vec2> Projection::project(const Vec3& direction) const {
   if (kind == Kind::Equirectangular) return erp_from_direction(direction, width);
+  if (kind == Kind::Lens) return lens->project(rotation.transpose() * direction);
   const Vec3 camera = rotation.transpose() * direction;
   if (!(camera.z() > 0)) return std::nullopt;
   return Vec2(width / 2.0 + focal * camera.x() / camera.z(),
               height / 2.0 + focal * camera.y() / camera.z());
 }
 
+namespace {
+
+// The angle between the rays through pixel +- half a pixel along `axis`; twice one side's where
+// the other leaves the image; 0 where neither sees.
+double lens_span(const Lens& lens, Vec2 pixel, Vec2 axis) {
+  const std::optional<Vec3> centre = lens.ray(pixel), a = lens.ray(pixel - axis / 2),
+                            b = lens.ray(pixel + axis / 2);
+  const auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
+  if (a && b) return angle(*a, *b);
+  if (centre && (a || b)) return 2 * angle(*centre, a ? *a : *b);
+  return 0;
+}
+
+}  // namespace
+
 double Projection::pixel_spread(Vec2 pixel) const {
   if (kind == Kind::Equirectangular) return 2 * kPi / width;
+  if (kind == Kind::Lens)
+    return std::sqrt(lens_span(*lens, pixel, Vec2::UnitX()) * lens_span(*lens, pixel, Vec2::UnitY()));
   const Vec2 offset = (pixel - Vec2(width / 2.0, height / 2.0)) / focal;
   const double cos_axis = 1 / std::sqrt(1 + offset.squaredNorm());
   return std::pow(cos_axis, 1.5) / focal;

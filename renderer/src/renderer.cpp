@@ -124,10 +124,23 @@ void put_normals(const TruthContext& c, const Hit& hit, const Vec3& direction, V
 }
 
 // Every asked-for kind of the ray through `pixel`, into column x, row y of `out`.
+// A pixel outside a lens's image: nothing, in every kind.
+void put_uncovered(GroundTruth& out, int x, int y) {
+  *out.depth.pixel(x, y) = std::numeric_limits<float>::quiet_NaN();
+  *out.semantic.pixel(x, y) = std::uint8_t(SemanticClass::Unlabeled);
+  *out.instance.pixel(x, y) = 0;
+  put_flow(out.flow, out.valid, x, y, {});
+  for (FlowTruth& more : out.more) put_flow(more.flow, more.valid, x, y, {});
+  for (Image<float>* image : {&out.scene_flow, &out.normal, &out.shading_normal})
+    if (!image->data.empty()) std::fill_n(image->pixel(x, y), 3, kNoVector);
+}
+
 void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int y) {
   const Pose& rig = c.request.pair.rig;
   const Vec3 origin = rig.translation();
-  const Vec3 direction = (rig.linear() * c.projection.ray(pixel)).normalized();
+  const Vec3 camera_ray = c.projection.ray(pixel);
+  if (camera_ray.isZero()) return put_uncovered(out, x, y);
+  const Vec3 direction = (rig.linear() * camera_ray).normalized();
   const Hit hit = c.scene.intersect(origin, direction);
   *out.depth.pixel(x, y) = float(hit.distance);
   *out.semantic.pixel(x, y) = std::uint8_t(
