@@ -10,6 +10,7 @@
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/release/layout.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/preview.h"
 #include "flowscape/release/split.h"
 
@@ -18,12 +19,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void write_video(const fs::path& path, const fs::path& sequence, int frames, int width) {
+// The views a preview shows: the ERP, or each camera of another rig (not the cube faces).
+std::vector<View> shown_views(const ReleaseLayout& layout) {
+  std::vector<View> views;
+  for (const View& view : layout.views())
+    if (!view.face) views.push_back(view);
+  return views;
+}
+
+// Colour | flow of every shown view, one row each.
+void write_video(const fs::path& path, const fs::path& sequence, const std::vector<View>& views,
+                 int frames, int width) {
   write_atomically(path, [&](const fs::path& temporary) {
     cv::VideoWriter video;
     for (int f = 0; f + 1 < frames; ++f) {
-      const auto row = frame_preview_row(sequence, f, width);
-      const Image<std::uint8_t> tile = contact_sheet({{row[0], row[1]}});
+      std::vector<std::vector<Image<std::uint8_t>>> rows;
+      for (const View& view : views) {
+        const auto row = frame_preview_row(sequence, f, width, view);
+        rows.push_back({row[0], row[1]});
+      }
+      const Image<std::uint8_t> tile = contact_sheet(rows);
       const cv::Mat rgb(tile.height, tile.width, CV_8UC3,
                         const_cast<std::uint8_t*>(tile.data.data()));
       if (!video.isOpened() &&
@@ -65,19 +80,23 @@ int main(int argc, char** argv) {
         sequences.push_back(s);
     if (sequences.empty()) throw FileError(release, "no such sequences");
     remove_temporary_files(out);
+    const std::vector<View> views = shown_views(read_release_layout(release));
     Progress progress("flowscape_preview", sequences.size(), "sequences");
     for (const SequenceInfo& s : sequences) {
       const fs::path dir = sequence_dir(release, s.name);
       std::vector<std::vector<Image<std::uint8_t>>> rows;
-      for (int f : {0, (s.frames - 1) / 2, s.frames - 2}) {
-        rows.push_back(frame_preview_row(dir, f, width));
-        const std::string frame = s.name + " (" + s.weather + ") frame " + std::to_string(f);
-        for (const auto& [tile, what] :
-             {std::pair{0, ": colour"}, {1, ": flow"}, {2, ": semantics"}})
-          label_tile(rows.back()[tile], frame + what);
-      }
+      for (int f : {0, (s.frames - 1) / 2, s.frames - 2})
+        for (const View& view : views) {
+          rows.push_back(frame_preview_row(dir, f, width, view));
+          const std::string camera = view.is_erp() ? "" : " " + view.camera;
+          const std::string frame =
+              s.name + camera + " (" + s.weather + ") frame " + std::to_string(f);
+          for (const auto& [tile, what] :
+               {std::pair{0, ": colour"}, {1, ": flow"}, {2, ": semantics"}})
+            label_tile(rows.back()[tile], frame + what);
+        }
       write_image(fs::path(out) / (s.name + ".png"), contact_sheet(rows));
-      if (!no_video) write_video(fs::path(out) / (s.name + ".mp4"), dir, s.frames, width);
+      if (!no_video) write_video(fs::path(out) / (s.name + ".mp4"), dir, views, s.frames, width);
       progress.advance();
     }
     progress.finish();

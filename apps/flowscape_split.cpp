@@ -6,6 +6,7 @@
 
 #include "cli.h"
 #include "flowscape/core/files.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/split.h"
 
 using namespace flowscape;
@@ -38,6 +39,13 @@ int main(int argc, char** argv) {
     write_split_files(release, split);
     panoflow = {flow == "classic" ? FlowMode::Classic : FlowMode::Wrap360, sky == "invalid",
                 occluded == "invalid"};
+    if (!no_panoflow && !read_release_layout(release).has_erp()) {
+      no_panoflow = true;
+      std::fprintf(diagnostics(),
+                   "flowscape_split: warning: %s: its rig has no ERP view, so no panoflow/ tree "
+                   "(the PanoFlow code reads ERP images); splits/ only\n",
+                   release.c_str());
+    }
     if (!no_panoflow)
       for (const std::string& folder : write_panoflow_tree(release, split, panoflow))
         std::fprintf(diagnostics(),

@@ -108,6 +108,9 @@ int main(int argc, char** argv) {
                  "comma-separated frame gaps of every flow kind (1 is the next frame; flow_gap<k> "
                  "and, with backward flow, flow_backward_gap<k> for the others)")
       ->default_str("1");
+  option("--rig", "rig", defaults.rig,
+         "the cameras: flowscape (the ERP and six cube faces), fisheye, woodscape, pal, "
+         "dual-fisheye, or a rig file (.json, docs/cameras.md)");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "

@@ -59,7 +59,7 @@ TEST_CASE("kind names and folders spell their gaps; other spellings are no kind"
 }
 
 TEST_CASE("a frame has 6 files per view, the last frame 4; the cube adds six views") {
-  const Layout six = flowscape_layout(false), cube = flowscape_layout(true);
+  const ReleaseLayout six = flowscape_layout(false), cube = flowscape_layout(true);
   CHECK(six.frame_files(0, 3).size() == 6);
   CHECK(six.frame_files(2, 3).size() == 4);
   CHECK(cube.frame_files(0, 3).size() == 6 * 7);
@@ -71,7 +71,7 @@ TEST_CASE("a frame has 6 files per view, the last frame 4; the cube adds six vie
 }
 
 TEST_CASE("a layout holds the six, the picked kinds and each per-gap kind at every gap") {
-  const Layout layout = Layout::of({"flow_backward", "normal"}, {4, 1, 2}, false);
+  const ReleaseLayout layout = ReleaseLayout::of({"flow_backward", "normal"}, {4, 1, 2}, false);
   std::vector<std::string> names;
   for (const ReleaseKind& kind : layout.kinds) names.push_back(kind.name());
   CHECK(names == std::vector<std::string>{"color", "flow", "flow_gap2", "flow_gap4", "semantic",
@@ -85,17 +85,17 @@ TEST_CASE("a layout holds the six, the picked kinds and each per-gap kind at eve
   CHECK(layout.frame_files(3, 10).size() == 5 + 6 + 4);
   CHECK(layout.flow_steps(3, 10) == std::vector<int>{1, 2, 4, -1, -2});
   CHECK(layout.flow_steps(9, 10) == std::vector<int>{-1, -2, -4});
-  CHECK(Layout::of({"all"}, {1}, true).kinds.size() == kOutputKinds.size());
-  CHECK_THROWS_WITH(Layout::of({"color"}, {1}, true),
+  CHECK(ReleaseLayout::of({"all"}, {1}, true).kinds.size() == kOutputKinds.size());
+  CHECK_THROWS_WITH(ReleaseLayout::of({"color"}, {1}, true),
                     Catch::Contains("unknown output kind \"color\""));
-  CHECK_THROWS_WITH(Layout::of({"normals"}, {1}, true),
+  CHECK_THROWS_WITH(ReleaseLayout::of({"normals"}, {1}, true),
                     Catch::Contains("pick from: all, flow_backward, valid_backward"));
-  CHECK_THROWS_WITH(Layout::of({}, {2}, true), Catch::Contains("flow gaps must include 1"));
-  CHECK_THROWS_WITH(Layout::of({}, {1, 0}, true), Catch::Contains("flow gap 0 is out of range"));
+  CHECK_THROWS_WITH(ReleaseLayout::of({}, {2}, true), Catch::Contains("flow gaps must include 1"));
+  CHECK_THROWS_WITH(ReleaseLayout::of({}, {1, 0}, true), Catch::Contains("flow gap 0 is out of range"));
 }
 
 TEST_CASE("the layout in manifest.json states the same paths as templates") {
-  const Layout release = Layout::of({"all"}, {1, 3}, true);
+  const ReleaseLayout release = ReleaseLayout::of({"all"}, {1, 3}, true);
   const nlohmann::json layout = layout_json(release);
   CHECK(layout["sequence_dir"] == "sequences/{sequence}");
   CHECK(layout["frame_file"] == "{view}/{folder}/{frame:06d}{extension}");
@@ -112,7 +112,7 @@ TEST_CASE("the layout in manifest.json states the same paths as templates") {
   }
   CHECK(layout["kinds"][0]["pixel_type"] == "uint8");
   CHECK(layout["kinds"][1]["pairs_only"] == true);
-  const Layout back = layout_from_json(layout);
+  const ReleaseLayout back = layout_from_json(layout);
   CHECK(back.kinds == release.kinds);
   CHECK(back.cube);
   CHECK(layout_from_json(nlohmann::json()).kinds == flowscape_layout(true).kinds);  // before 0.8

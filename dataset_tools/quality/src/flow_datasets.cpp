@@ -53,43 +53,50 @@ void check_conventions(const nlohmann::json& conventions, const fs::path& manife
                     "v down and a 360 or classic seam; gt_quality cannot score it");
 }
 
-// The layout a release states (checking its conventions), or FlowScape's six without a manifest.
-Layout release_layout_of(const fs::path& root) {
+// The layout a release states, its conventions checked.
+ReleaseLayout release_layout_of(const fs::path& root) {
   const fs::path manifest = root / kManifestFile;
-  if (!fs::exists(manifest)) return flowscape_layout(true);
-  const nlohmann::json json = read_json(manifest);
-  try {
-    check_conventions(json.value("conventions", nlohmann::json()), manifest);
-    return layout_from_json(json.value("layout", nlohmann::json()));
-  } catch (const std::invalid_argument& e) {
-    throw FileError(manifest, std::string("layout: ") + e.what());
-  } catch (const nlohmann::json::exception& e) {
-    throw FileError(manifest, std::string("not a FlowScape manifest: ") + e.what());
+  if (fs::exists(manifest)) {
+    const nlohmann::json json = read_json(manifest);
+    check_conventions(json.is_object() ? json.value("conventions", nlohmann::json())
+                                       : nlohmann::json(),
+                      manifest);
   }
+  return read_release_layout(root);
 }
 
-// The ERP pairs of every sequence whose flow file exists (a release may be unfinished), with the
+// The pairs of every sequence whose flow file exists (a release may be unfinished), in the ERP
+// or, for another rig, in each of its cameras (grouped per sequence and camera), with the
 // backward flow of each pair's second frame where the release has it.
 FlowDataset flowscape_release(const fs::path& root) {
   FlowDataset d{"flowscape", {}};
-  const Layout layout = release_layout_of(root);
+  const ReleaseLayout layout = release_layout_of(root);
   const bool backward = layout.has("flow_backward") && layout.has("valid_backward");
   const ReleaseKind color = output_kind("color"), flow = output_kind("flow"),
                     valid = output_kind("valid"), back = output_kind("flow_backward"),
                     back_valid = output_kind("valid_backward");
   for (const fs::path& seq : sorted_dirs(sequence_dir(root, ""))) {
     const SequenceMeta meta = read_meta(seq);
-    for (int f = 0; flow.has_frame(f, meta.frames); ++f) {
+    for (const View& view : layout.views()) {
+      if (view.face) continue;  // the faces are the ERP's sources
+      const bool panorama =
+          view.is_erp() || std::any_of(layout.cameras.begin(), layout.cameras.end(),
+                                       [&](const LayoutCamera& c) {
+                                         return c.name == view.camera && c.panorama;
+                                       });
+      const std::string group = seq.filename().string() + (view.is_erp() ? "" : "/" + view.camera);
       const auto file = [&](const ReleaseKind& kind, int frame) {
-        return seq / frame_file(kind, std::nullopt, frame);
+        return seq / frame_file(kind, view, frame);
       };
-      if (!fs::exists(file(flow, f))) continue;
-      PairFiles pair{
-          file(color, f),       file(color, f + 1),      file(flow, f),         file(valid, f),
-          VisibleMask::NonZero, seq.filename().string(), meta.weather_preset(), true};
-      if (backward)
-        pair.backward = file(back, f + 1), pair.backward_visible = file(back_valid, f + 1);
-      d.pairs.push_back(pair);
+      for (int f = 0; flow.has_frame(f, meta.frames); ++f) {
+        if (!fs::exists(file(flow, f))) continue;
+        PairFiles pair{file(color, f),  file(color, f + 1),   file(flow, f),
+                       file(valid, f),  VisibleMask::NonZero, group,
+                       meta.weather_preset(), panorama};
+        if (backward)
+          pair.backward = file(back, f + 1), pair.backward_visible = file(back_valid, f + 1);
+        d.pairs.push_back(pair);
+      }
     }
   }
   return d;

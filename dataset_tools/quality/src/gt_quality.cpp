@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -178,8 +179,10 @@ std::string measure(bool has, double value, const char* format) {
 
 std::string report_table(const QualityReport& report) {
   std::ostringstream out;
-  char line[320];
-  std::snprintf(line, sizeof line, "%-36s %6s %8s %8s %8s  %-10s %10s %10s %8s\n",
+  char line[512];
+  int name_width = 36;  // the paper's rows fit; longer names (sequence/camera) widen the column
+  for (const QualityRow& r : report.rows) name_width = std::max(name_width, int(r.name.size()));
+  std::snprintf(line, sizeof line, "%-*s %6s %8s %8s %8s  %-10s %10s %10s %8s\n", name_width,
                 report.layout.c_str(), "pairs", "PE", "WPE", "Diff", "quality", "WPE (noc)",
                 "WPE (occ)", "FB ok");
   out << line;
@@ -187,8 +190,8 @@ std::string report_table(const QualityReport& report) {
     const std::string noc = measure(r.visible_pairs, r.wpe_visible, "%.2f"),
                       occ = measure(r.visible_pairs, r.wpe_occluded, "%.2f"),
                       trip = measure(r.round_trip_pairs, 100 * r.round_trip_share(), "%.2f%%");
-    std::snprintf(line, sizeof line, "%-36s %6d %8.2f %8.2f %7.1f%%  %-10s %10s %10s %8s\n",
-                  r.name.c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff), noc.c_str(),
+    std::snprintf(line, sizeof line, "%-*s %6d %8.2f %8.2f %7.1f%%  %-10s %10s %10s %8s\n",
+                  name_width, r.name.substr(0, 256).c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff), noc.c_str(),
                   occ.c_str(), trip.c_str());
     out << line;
   }

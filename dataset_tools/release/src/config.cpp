@@ -29,7 +29,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("denoise", c.denoise);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("cube", c.cube), visit("models", c.models);
-  visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps);
+  visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
 }
 
 template <class T>
@@ -82,7 +82,23 @@ void validate(const ReleaseConfig& c) {
                                                                    std::to_string(c.shards) + ")");
 }
 
-Layout release_layout(const ReleaseConfig& c) { return Layout::of(c.outputs, c.flow_gaps, c.cube); }
+Rig release_rig(const ReleaseConfig& c) {
+  if (c.rig == kFlowscapeRig) return {kFlowscapeRig, {}};
+  if (!c.rig.ends_with(".json")) return rig_preset(c.rig, c.height);
+  try {
+    return rig_from_json(read_json(c.rig));
+  } catch (const std::invalid_argument& e) {
+    throw FileError(c.rig, e.what());
+  }
+}
+
+ReleaseLayout release_layout(const ReleaseConfig& c) {
+  ReleaseLayout layout = ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube);
+  for (const RigCamera& camera : release_rig(c).cameras)
+    layout.cameras.push_back(
+        {camera.name, camera.projection.kind == Projection::Kind::Equirectangular});
+  return layout;
+}
 
 std::string config_differences(const nlohmann::json& first, const std::string& first_name,
                                const nlohmann::json& second, const std::string& second_name) {

@@ -39,7 +39,7 @@ void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
 
 // Mean bytes per frame of each kind of the release (all views), from its files on disk.
 std::map<std::string, double> bytes_per_frame(const fs::path& out, const ReleaseConfig& c) {
-  const Layout layout = release_layout(c);
+  const ReleaseLayout layout = release_layout(c);
   const std::vector<SequencePlan> plans = plan_sequences(c);
   std::map<std::string, double> bytes;
   for (const SequencePlan& plan : plans)
@@ -121,7 +121,7 @@ void layout_section(std::ostringstream& md, const ReleaseConfig& c) {
     if (kind.row->cube) cube.append(cube.empty() ? "" : ",").append(kind.folder());
   }
   const fs::path sequence = sequence_dir("", "<map>_<seq>");
-  md << "\n## Layout\n\n```\n"
+  md << "\n## ReleaseLayout\n\n```\n"
      << (sequence / kMetaFile).generic_string()
      << "      map, weather, seed, poses, calibration, actors, 2-D boxes\n"
      << (sequence / view_dir(std::nullopt)).generic_string() << "/{" << erp << "}/<frame>\n";
@@ -172,9 +172,12 @@ fs::path example_file(const std::string& weather) {
 void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
   remove_temporary_files(out / kCardDir);
   std::vector<std::string> examples;
+  const ReleaseLayout layout = release_layout(config);
   for (const SequencePlan& plan : first_of_each_weather(config)) {
-    write_image(out / example_file(plan.weather),
-                contact_sheet({frame_preview_row(sequence_dir(out, plan.name), 0, 512)}));
+    std::vector<std::vector<Image<std::uint8_t>>> rows;  // the ERP, or each camera of the rig
+    for (const View& view : layout.views())
+      if (!view.face) rows.push_back(frame_preview_row(sequence_dir(out, plan.name), 0, 512, view));
+    write_image(out / example_file(plan.weather), contact_sheet(rows));
     examples.push_back(plan.weather);
   }
   write_text(out / kCardFile, card_text(config, out, examples));

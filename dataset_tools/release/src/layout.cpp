@@ -127,7 +127,7 @@ void check_picked(const std::vector<std::string>& picked) {
 
 }  // namespace
 
-Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube) {
+ReleaseLayout ReleaseLayout::of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube) {
   if (std::find(gaps.begin(), gaps.end(), 1) == gaps.end())
     throw std::invalid_argument("flow gaps must include 1 (the flow every tool reads)");
   for (int gap : gaps)
@@ -141,7 +141,7 @@ Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
   if (sorted.size() > std::size_t(kMaxFlowGaps))
     throw std::invalid_argument("at most " + std::to_string(kMaxFlowGaps) + " flow gaps");
-  Layout layout;
+  ReleaseLayout layout;
   layout.cube = cube;
   const auto is_picked = [&](std::string_view name) {
     return std::find(picked.begin(), picked.end(), name) != picked.end();
@@ -157,24 +157,36 @@ Layout Layout::of(const std::vector<std::string>& picked, const std::vector<int>
   return layout;
 }
 
-const ReleaseKind* Layout::find(std::string_view name) const {
+const ReleaseKind* ReleaseLayout::find(std::string_view name) const {
   for (const ReleaseKind& kind : kinds)
     if (kind.name() == name) return &kind;
   return nullptr;
 }
 
-std::vector<fs::path> Layout::frame_files(int frame, int frames) const {
+View View::of_camera(std::string name) {
+  View view;
+  view.camera = std::move(name);
+  return view;
+}
+
+std::vector<View> ReleaseLayout::views() const {
+  std::vector<View> views;
+  if (has_erp()) views.emplace_back();
+  if (has_erp() && cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
+  for (const LayoutCamera& camera : cameras) views.push_back(View::of_camera(camera.name));
+  return views;
+}
+
+std::vector<fs::path> ReleaseLayout::frame_files(int frame, int frames) const {
   std::vector<fs::path> files;
-  std::vector<View> views{std::nullopt};
-  if (cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
-  for (const View& view : views)
+  for (const View& view : views())
     for (const ReleaseKind& kind : kinds)
-      if ((view ? kind.row->cube : kind.row->erp) && kind.has_frame(frame, frames))
+      if ((view.is_erp() ? kind.row->erp : kind.row->cube) && kind.has_frame(frame, frames))
         files.push_back(frame_file(kind, view, frame));
   return files;
 }
 
-std::vector<fs::path> Layout::sequence_files(int frames) const {
+std::vector<fs::path> ReleaseLayout::sequence_files(int frames) const {
   std::vector<fs::path> files{kMetaFile};
   for (int f = 0; f < frames; ++f) {
     const std::vector<fs::path> frame = frame_files(f, frames);
@@ -183,7 +195,7 @@ std::vector<fs::path> Layout::sequence_files(int frames) const {
   return files;
 }
 
-std::vector<int> Layout::flow_steps(int frame, int frames) const {
+std::vector<int> ReleaseLayout::flow_steps(int frame, int frames) const {
   std::vector<int> steps;
   if (frame + 1 < frames) steps.push_back(1);
   for (const ReleaseKind& kind : kinds)
@@ -193,7 +205,7 @@ std::vector<int> Layout::flow_steps(int frame, int frames) const {
   return steps;
 }
 
-Layout flowscape_layout(bool cube) { return Layout::of({}, {1}, cube); }
+ReleaseLayout flowscape_layout(bool cube) { return ReleaseLayout::of({}, {1}, cube); }
 
 std::vector<std::string> pickable_kinds() {
   std::vector<std::string> names;
@@ -212,11 +224,12 @@ fs::path sequence_dir(const fs::path& release, const std::string& name) {
   return release / kSequencesDir / name;
 }
 
-fs::path view_dir(View view) {
-  return view ? fs::path(kCubeDir) / std::string(face_name(*view)) : fs::path(kErpDir);
+fs::path view_dir(const View& view) {
+  if (!view.camera.empty()) return fs::path(kCamerasDir) / view.camera;
+  return view.face ? fs::path(kCubeDir) / std::string(face_name(*view.face)) : fs::path(kErpDir);
 }
 
-fs::path frame_file(const ReleaseKind& kind, View view, int frame) {
+fs::path frame_file(const ReleaseKind& kind, const View& view, int frame) {
   return view_dir(view) / kind.folder() / (frame_name(frame) + std::string(kind.row->extension));
 }
 
@@ -230,7 +243,7 @@ fs::path split_file(const fs::path& release, const std::string& side) {
   return release / kSplitsDir / (side + ".txt");
 }
 
-nlohmann::json layout_json(const Layout& layout) {
+nlohmann::json layout_json(const ReleaseLayout& layout) {
   nlohmann::json kinds = nlohmann::json::array();
   for (const ReleaseKind& kind : layout.kinds) {
     const OutputKind& k = *kind.row;
@@ -250,9 +263,16 @@ nlohmann::json layout_json(const Layout& layout) {
   }
   nlohmann::json faces = nlohmann::json::array();
   for (Face face : kFaces) faces.push_back(face_name(face));
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const LayoutCamera& c : layout.cameras)
+    cameras.push_back({{"name", c.name}, {"panorama", c.panorama}});
   return {{"sequence_dir", std::string(kSequencesDir) + "/{sequence}"},
           {"meta", kMetaFile},
-          {"views", {{"erp", kErpDir}, {"cube", std::string(kCubeDir) + "/{face}"}}},
+          {"views",
+           {{"erp", kErpDir},
+            {"cube", std::string(kCubeDir) + "/{face}"},
+            {"camera", std::string(kCamerasDir) + "/{camera}"}}},
+          {"cameras", cameras},
           {"faces", faces},
           {"frame_file", "{view}/{folder}/{frame:06d}{extension}"},
           {"split_file", std::string(kSplitsDir) + "/{split}.txt"},
@@ -308,10 +328,12 @@ nlohmann::json conventions_json() {
         {"erp_wrap", "x1 <= x0: the box crosses the seam (columns x0..W-1, then 0..x1-1)"}}}};
 }
 
-Layout layout_from_json(const nlohmann::json& json) {
+ReleaseLayout layout_from_json(const nlohmann::json& json) {
   if (!json.is_object() || !json.contains("kinds")) return flowscape_layout(true);
-  Layout layout;
+  ReleaseLayout layout;
   layout.cube = json.value("cube_faces", true);
+  for (const nlohmann::json& c : json.value("cameras", nlohmann::json::array()))
+    layout.cameras.push_back({c.at("name").get<std::string>(), c.value("panorama", false)});
   for (const nlohmann::json& row : json.at("kinds")) {
     const std::string name = row.is_object() ? row.value("name", "") : "";
     const std::optional<ReleaseKind> kind = release_kind(name);

@@ -14,13 +14,6 @@ namespace {
 
 constexpr const char* kRigFrame = "x forward, y left, z up; rig pose = rig -> world, 3x4 row-major";
 
-nlohmann::json pose_row_major(const Pose& pose) {
-  std::vector<double> values;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) values.push_back(pose.matrix()(r, c));
-  return values;
-}
-
 Pose pose_from_row_major(const nlohmann::json& values) {
   const auto v = values.get<std::vector<double>>();
   if (v.size() != 12) throw std::invalid_argument("a pose needs 12 numbers (3x4 row-major)");
@@ -35,6 +28,13 @@ nlohmann::json matrix_rows(const Mat3& m) {
 }
 
 }  // namespace
+
+nlohmann::json pose_row_major(const Pose& pose) {
+  std::vector<double> values;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) values.push_back(pose.matrix()(r, c));
+  return values;
+}
 
 nlohmann::json views_json(int erp_height, int face_size) {
   const int W = 2 * erp_height;
@@ -180,6 +180,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.views = j.value("views", nlohmann::json());
     m.actors = j.value("actors", nlohmann::json());
     m.boxes = j.value("boxes_2d", nlohmann::json());
+    m.rig = j.value("rig", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());
@@ -194,6 +195,18 @@ nlohmann::json read_json(const fs::path& path) {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw FileError(path, std::string("not JSON: ") + e.what());
+  }
+}
+
+ReleaseLayout read_release_layout(const fs::path& release) {
+  const fs::path manifest = release / kManifestFile;
+  if (!fs::exists(manifest)) return flowscape_layout(true);
+  const nlohmann::json json = read_json(manifest);
+  try {
+    return layout_from_json(json.is_object() ? json.value("layout", nlohmann::json())
+                                             : nlohmann::json());
+  } catch (const std::exception& e) {  // unknown kinds, and json's type errors
+    throw FileError(manifest, std::string("layout: ") + e.what());
   }
 }
 

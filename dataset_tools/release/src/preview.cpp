@@ -10,8 +10,11 @@
 namespace flowscape {
 namespace fs = std::filesystem;
 
-std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width) {
-  const auto file = [&](const char* kind) { return erp_file(dir, kind, frame); };
+std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width,
+                                                   const View& view) {
+  const auto file = [&](const char* kind) {
+    return dir / frame_file(output_kind(kind), view, frame);
+  };
   const Image<std::uint8_t> color = read_image<std::uint8_t>(file("color"));
   Image<std::uint8_t> flow(color.width, color.height, 3);
   if (fs::exists(file("flow"))) {

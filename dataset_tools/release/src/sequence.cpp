@@ -21,7 +21,7 @@ FramePair Sequence::frame_pair(int frame) const {
 
 Moment Sequence::moment(int frame) const { return {time(frame), city.rig(time(frame))}; }
 
-TruthPlan truth_plan(const Sequence& sequence, const Layout& layout, int frame, int frames) {
+TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int frame, int frames) {
   TruthPlan plan{{sequence.frame_pair(frame)}, {}};
   for (int step : layout.flow_steps(frame, frames))
     if (step != 1) {
@@ -70,6 +70,51 @@ Sequence make_sequence(const SequenceSpec& spec) {
   return s;
 }
 
+namespace {
+
+// Each view's camera -> rig, by its meta.json key.
+std::vector<std::pair<std::string, Pose>> view_mounts(const Rig& rig, bool faces) {
+  std::vector<std::pair<std::string, Pose>> mounts;
+  const auto rotation = [](const Mat3& r) {
+    Pose pose = Pose::Identity();
+    pose.linear() = r;
+    return pose;
+  };
+  for (const RigCamera& camera : rig.cameras)
+    mounts.emplace_back(view_dir(View::of_camera(camera.name)).generic_string(), camera.mount());
+  if (!rig.cameras.empty()) return mounts;
+  mounts.emplace_back(kErpDir, rotation(face_rotation(Face::Front)));
+  if (faces)
+    for (Face face : kFaces)
+      mounts.emplace_back(view_dir(face).generic_string(), rotation(face_rotation(face)));
+  return mounts;
+}
+
+nlohmann::json matrix_rows(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
+
+// The views of another rig than flowscape: each camera's model, parameters (as its lens states
+// them: OpenCV's K and D for Kannala-Brandt), image and mount.
+nlohmann::json rig_views_json(const Rig& rig) {
+  nlohmann::json views = {
+      {"camera_frame", "x right, y down, z forward; camera_to_rig maps it to the rig frame"}};
+  for (const RigCamera& camera : rig.cameras) {
+    const Projection& p = camera.projection;
+    const bool erp = p.kind == Projection::Kind::Equirectangular;
+    views[view_dir(View::of_camera(camera.name)).generic_string()] = {
+        {"model", erp ? "equirectangular" : p.lens->model()},
+        {"parameters", erp ? nlohmann::json{{"height", p.height}} : p.lens->parameters()},
+        {"width", p.width},
+        {"height", p.height},
+        {"camera_to_rig", matrix_rows(p.camera_to_rig())},
+        {"translation_in_rig", {camera.position.x(), camera.position.y(), camera.position.z()}}};
+  }
+  return views;
+}
+
+}  // namespace
+
 SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
                            const ReleaseConfig& config) {
   SequenceMeta meta;
@@ -83,8 +128,15 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.camera_roll_sway = s.city.mount.roll_amplitude * 180 / kPi;
   for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(Sequence::time(f)));
   meta.city = to_json(s.city);
-  meta.face_size = config.cube ? config.face_size : 0;
-  meta.views = views_json(config.height, meta.face_size);
+  const Rig rig = release_rig(config);
+  meta.face_size = config.cube && rig.cameras.empty() ? config.face_size : 0;
+  meta.views = rig.cameras.empty() ? views_json(config.height, meta.face_size) : rig_views_json(rig);
+  if (!rig.cameras.empty()) meta.rig = to_json(rig);
+  for (const auto& [view, mount] : view_mounts(rig, meta.face_size > 0)) {
+    nlohmann::json poses = nlohmann::json::array();
+    for (const Pose& pose : meta.poses) poses.push_back(pose_row_major(pose * mount));
+    meta.views[view]["poses"] = poses;
+  }
   meta.actors = actor_records(s, config.frames);
   return meta;
 }

@@ -62,29 +62,40 @@ void write_output(const fs::path& path, const OutputKind& kind, ImageView<const 
   write_image(path, image);
 }
 
-// Writes the kinds this view has at `frame`; a cube view's images are the six faces stacked.
-void write_view(const fs::path& dir, const Layout& layout, bool cube, int frame, int frames,
-                const ViewImages& images) {
+// Writes the kinds a view has at `frame`, from its images (a cube face's: its part of the six
+// stacked, `face_of` cutting it out).
+template <class Cut>
+void write_view(const fs::path& dir, const ReleaseLayout& layout, const View& view, int frame,
+                int frames, const ViewImages& images, const Cut& face_of) {
   for (const ReleaseKind& kind : layout.kinds) {
-    if (!(cube ? kind.row->cube : kind.row->erp) || !kind.has_frame(frame, frames)) continue;
+    if (!(view.is_erp() ? kind.row->erp : kind.row->cube) || !kind.has_frame(frame, frames))
+      continue;
     std::visit(
         [&](const auto& image) {
-          if (!cube)
-            return write_output(dir / frame_file(kind, std::nullopt, frame), *kind.row,
-                                image.view());
-          for (Face face : kFaces)
-            write_output(dir / frame_file(kind, face, frame), *kind.row,
-                         face_view(image.view(), face));
+          write_output(dir / frame_file(kind, view, frame), *kind.row, face_of(image.view()));
         },
         images.at(kind.name()));
   }
 }
 
-// The ERP colour is stitched from the cube faces' (denoised face by face) when there are faces,
-// else rendered and denoised directly; the ERP ground truth is always ray cast directly (exact,
-// and cheap next to colour).
-void write_frame(const ReleaseConfig& config, const Layout& layout, const Sequence& sequence,
-                 Renderer& renderer, const CubeToErp* map, const fs::path& dir, int frame) {
+void write_single_view(const fs::path& dir, const ReleaseLayout& layout, const View& view, int frame,
+                       int frames, const ViewImages& images) {
+  write_view(dir, layout, view, frame, frames, images, [](auto image) { return image; });
+}
+
+void write_cube(const fs::path& dir, const ReleaseLayout& layout, int frame, int frames,
+                const ViewImages& stacked) {
+  for (Face face : kFaces)
+    write_view(dir, layout, face, frame, frames, stacked,
+               [face](auto image) { return face_view(image, face); });
+}
+
+// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
+// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
+// directly (exact, and cheap next to colour).
+void write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
+                           const Sequence& sequence, Renderer& renderer, const CubeToErp* map,
+                           const fs::path& dir, int frame) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   const Projection erp = Projection::equirectangular(config.height);
   GroundTruth truth = renderer.ground_truth(erp, plan.request);
@@ -95,28 +106,46 @@ void write_frame(const ReleaseConfig& config, const Layout& layout, const Sequen
     const Image<float> color =
         config.denoise == "none" ? raw_color(cube.color) : denoise_cube(cube);
     erp_color = resample_bilinear(map->sampling, color);
-    write_view(dir, layout, true, frame, config.frames,
+    write_cube(dir, layout, frame, config.frames,
                view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps));
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
-  write_view(dir, layout, false, frame, config.frames,
-             view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps));
+  write_single_view(dir, layout, View(), frame, config.frames,
+                    view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps));
+}
+
+// Another rig: every camera ray cast and path traced directly from its own optical centre.
+void write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout, const Rig& rig,
+                     const Sequence& sequence, Renderer& renderer, const fs::path& dir,
+                     int frame) {
+  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
+  for (const RigCamera& camera : rig.cameras) {
+    const TruthRequest request = at_camera(plan.request, camera);
+    GroundTruth truth = renderer.ground_truth(camera.projection, request);
+    const Image<float> color = release_color(config, sequence, renderer, camera.projection,
+                                             request.pair, frame, truth);
+    write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames,
+                      view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps));
+  }
 }
 
 // The 2-D boxes of every instance per view and frame, from the sequence's instance images:
 // {"erp": [[[id, x0, y0, x1, y1], ...] per frame], "cube/front": ...}.
-nlohmann::json boxes_json(const fs::path& dir, const Layout& layout, int frames) {
-  std::vector<View> views{std::nullopt};
-  if (layout.cube) views.insert(views.end(), kFaces.begin(), kFaces.end());
+nlohmann::json boxes_json(const fs::path& dir, const ReleaseLayout& layout, int frames) {
   nlohmann::json boxes = nlohmann::json::object();
-  for (const View& view : views) {
+  for (const View& view : layout.views()) {
+    const bool panorama =
+        view.is_erp() || std::any_of(layout.cameras.begin(), layout.cameras.end(),
+                                     [&](const LayoutCamera& c) {
+                                       return c.name == view.camera && c.panorama;
+                                     });
     nlohmann::json per_frame = nlohmann::json::array();
     for (int f = 0; f < frames; ++f) {
       const Image<std::uint16_t> ids =
           read_image<std::uint16_t>(dir / frame_file(output_kind("instance"), view, f));
       nlohmann::json frame = nlohmann::json::array();
-      for (const InstanceBox& b : instance_boxes(ids.view(), !view))
+      for (const InstanceBox& b : instance_boxes(ids.view(), panorama))
         frame.push_back({b.instance, b.x0, b.y0, b.x1, b.y1});
       per_frame.push_back(frame);
     }
@@ -167,7 +196,7 @@ nlohmann::json recorded_config(const fs::path& out) {
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const fs::path& out,
                     const SequenceProgress& progress) {
   const fs::path dir = sequence_dir(out, plan.name);
-  const Layout layout = release_layout(config);
+  const ReleaseLayout layout = release_layout(config);
   fs::create_directories(dir);
   remove_temporary_files_under(dir);
   std::vector<int> frames_to_render;
@@ -182,10 +211,14 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
   if (!frames_to_render.empty()) {
     Renderer renderer(sequence.city.scene);
-    const CubeToErp map =
-        config.cube ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
+    const Rig rig = release_rig(config);
+    const bool faces = rig.cameras.empty() && config.cube;
+    const CubeToErp map = faces ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
     for (int f : frames_to_render) {
-      write_frame(config, layout, sequence, renderer, config.cube ? &map : nullptr, dir, f);
+      if (rig.cameras.empty())
+        write_flowscape_frame(config, layout, sequence, renderer, faces ? &map : nullptr, dir, f);
+      else
+        write_rig_frame(config, layout, rig, sequence, renderer, dir, f);
       progress.frame_done();
     }
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "flowscape/release/layout.h"
+#include "flowscape/renderer/rig.h"
 
 namespace flowscape {
 
@@ -36,11 +37,18 @@ struct ReleaseConfig {
   // frame's colour time together; normal_shading (23 %) and more gaps are asked for.
   std::vector<std::string> outputs{"flow_backward", "valid_backward", "scene_flow", "normal"};
   std::vector<int> flow_gaps{1};
+  // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
+  // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),
+  // or a rig file (.json, docs/cameras.md).
+  std::string rig = "flowscape";
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
-// The kinds a release made with `config` holds (its outputs, flow gaps and faces).
-Layout release_layout(const ReleaseConfig& config);
+// The kinds and views a release made with `config` holds (its outputs, flow gaps, rig, faces).
+ReleaseLayout release_layout(const ReleaseConfig& config);
+// The release's rig (renderer/rig.h): none of its cameras for flowscape; a rig file's errors
+// are FileErrors naming it.
+Rig release_rig(const ReleaseConfig& config);
 nlohmann::json to_json(const ReleaseConfig& config);
 // "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ between two configs as JSON,
 // each value followed by the name of the config it comes from.

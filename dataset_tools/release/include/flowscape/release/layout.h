@@ -1,6 +1,6 @@
 #pragma once
 // The files of a FlowScape release (design.md, "Release layout"), written down once. Every kind of
-// output a frame can have is one row of kOutputKinds, and a release's Layout says which rows (and
+// output a frame can have is one row of kOutputKinds, and a release's ReleaseLayout says which rows (and
 // flow gaps) it holds; the writer, resume, manifest, dataset card, splits, previews, merge,
 // stitch_erp, gt_quality and the Python plugin (through the "layout" that manifest.json carries)
 // find files through it. A new output kind is a row here plus the code that produces its image in
@@ -113,15 +113,43 @@ bool has_frame(const ReleaseKind& kind, int frame, int frames);
 // Flow over a gap of k frames: k at most kMaxFlowGap, at most kMaxFlowGaps gaps.
 inline constexpr int kMaxFlowGap = 999, kMaxFlowGaps = 8;
 
+// A view of a sequence: the ERP panorama, one cube face (the flowscape rig), or one camera of
+// another rig (renderer/rig.h).
+struct View {
+  std::optional<Face> face;
+  std::string camera;  // its name; empty for the ERP and the faces
+  View() = default;    // the ERP
+  View(std::nullopt_t) {}
+  View(Face face) : face(face) {}  // NOLINT: implicit, a face is a view
+  static View of_camera(std::string name);
+  bool is_erp() const { return !face && camera.empty(); }
+};
+inline constexpr const char* kErpDir = "erp";          // the ERP view's folder
+inline constexpr const char* kCubeDir = "cube";        // the faces' folders are cube/<face>
+inline constexpr const char* kCamerasDir = "cameras";  // a rig's cameras are cameras/<name>
+
+// A camera of a rig as the layout knows it: its folder's name, and whether its image wraps
+// round horizontally (an equirectangular camera).
+struct LayoutCamera {
+  std::string name;
+  bool panorama = false;
+  bool operator==(const LayoutCamera&) const = default;
+};
+
 // What a release holds: the kinds every release has, the ones picked, each per-gap row at every
-// gap (in kOutputKinds order, gaps ascending), and whether it has cube faces.
-struct Layout {
+// gap (in kOutputKinds order, gaps ascending), and its views: the flowscape rig's ERP and, with
+// `cube`, its six faces; or another rig's cameras.
+struct ReleaseLayout {
   std::vector<ReleaseKind> kinds;
   bool cube = true;
+  std::vector<LayoutCamera> cameras;  // non-empty: another rig than flowscape (no ERP, no faces)
+
+  bool has_erp() const { return cameras.empty(); }
+  std::vector<View> views() const;  // the ERP, the faces, or the cameras
 
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.
   // Throws std::invalid_argument naming what is wrong.
-  static Layout of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube);
+  static ReleaseLayout of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube);
   const ReleaseKind* find(std::string_view name) const;  // null when the release lacks it
   bool has(std::string_view name) const { return find(name) != nullptr; }
   // Every file of one frame, relative to the sequence folder.
@@ -133,7 +161,7 @@ struct Layout {
   std::vector<int> flow_steps(int frame, int frames) const;
 };
 // The kinds of FlowScape (the six every release has) at gap 1.
-Layout flowscape_layout(bool cube);
+ReleaseLayout flowscape_layout(bool cube);
 // The rows --outputs may pick, in table order.
 std::vector<std::string> pickable_kinds();
 
@@ -150,13 +178,9 @@ inline constexpr const char* kShardDir = "manifests";
 // The dataset card's example images (dataset_card.h), beside its README.md.
 inline constexpr const char* kCardDir = "card";
 
-// A view of a sequence: the ERP panorama (no face) or one cube face.
-using View = std::optional<Face>;
-inline constexpr const char* kErpDir = "erp";    // the ERP view's folder
-inline constexpr const char* kCubeDir = "cube";  // the faces' folders are cube/<face>
-std::filesystem::path view_dir(View view);       // "erp" or "cube/<face>"
+std::filesystem::path view_dir(const View& view);  // "erp", "cube/<face>", "cameras/<name>"
 // <view>/<folder>/<frame><extension>, relative to the sequence folder.
-std::filesystem::path frame_file(const ReleaseKind& kind, View view, int frame);
+std::filesystem::path frame_file(const ReleaseKind& kind, const View& view, int frame);
 // The ERP file of output kind `kind` ("flow", "depth", "flow_gap2", ...) of a frame in a sequence
 // folder.
 std::filesystem::path erp_file(const std::filesystem::path& sequence, std::string_view kind,
@@ -166,13 +190,13 @@ std::filesystem::path erp_file(const std::filesystem::path& sequence, std::strin
 std::filesystem::path split_file(const std::filesystem::path& release, const std::string& side);
 
 // The layout as manifest.json states it: path templates (Python str.format fields) and the kinds.
-nlohmann::json layout_json(const Layout& layout);
+nlohmann::json layout_json(const ReleaseLayout& layout);
 // The conventions of a release's data, as manifest.json and the dataset card state them for
 // programs to read (docs/release.md, "Conventions"): flow direction, units, axes, the ERP seam,
 // sky and invalid values, depth, frames and time.
 nlohmann::json conventions_json();
 // The kinds a manifest's layout lists (a release from before they were listed: FlowScape's six);
 // throws std::invalid_argument for kinds it does not know.
-Layout layout_from_json(const nlohmann::json& layout);
+ReleaseLayout layout_from_json(const nlohmann::json& layout);
 
 }  // namespace flowscape

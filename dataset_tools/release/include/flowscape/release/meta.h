@@ -10,6 +10,7 @@
 
 #include "flowscape/core/image.h"
 #include "flowscape/core/types.h"
+#include "flowscape/release/layout.h"
 
 namespace flowscape {
 
@@ -30,6 +31,7 @@ struct SequenceMeta {
   // Calibration of every view (views_json), every actor per frame (box and velocities), and the
   // 2-D box of each instance per view and frame (instance_boxes); null when not recorded.
   nlohmann::json views, actors, boxes;
+  nlohmann::json rig;  // the rig's record (renderer/rig.h) for other rigs than flowscape
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from
@@ -55,12 +57,19 @@ struct InstanceBox {
 };
 std::vector<InstanceBox> instance_boxes(ImageView<const std::uint16_t> ids, bool panorama);
 
+// A pose as meta.json writes it: 3x4 row-major.
+nlohmann::json pose_row_major(const Pose& pose);
+
 nlohmann::json to_json(const SequenceMeta& meta);
 SequenceMeta meta_from_json(const nlohmann::json& json);  // throws std::invalid_argument
 
 // Any JSON file of a release (meta.json, manifests, configs), at most 256 MiB; a missing file, a
 // folder or bad JSON is a FileError naming it.
 nlohmann::json read_json(const std::filesystem::path& path);
+
+// The kinds and views <release>/manifest.json states (a release without one, or from before the
+// kinds were listed: FlowScape's six, ERP and faces); a layout it cannot read is a FileError.
+ReleaseLayout read_release_layout(const std::filesystem::path& release);
 
 // <sequence dir>/meta.json; errors are FileErrors naming the file.
 SequenceMeta read_meta(const std::filesystem::path& sequence_dir);

@@ -5,12 +5,13 @@
 #include <vector>
 
 #include "flowscape/core/image.h"
+#include "flowscape/release/layout.h"
 
 namespace flowscape {
 
-// Colour | flow (PanoFlow wheel) | semantics of one ERP frame, each at most `width` wide (the last
-// frame has no flow: black).
+// Colour | flow (PanoFlow wheel) | semantics of one frame of a view (the ERP by default), each at
+// most `width` wide (the last frame has no flow: black).
 std::vector<Image<std::uint8_t>> frame_preview_row(const std::filesystem::path& sequence_dir,
-                                                   int frame, int width);
+                                                   int frame, int width, const View& view = {});
 
 }  // namespace flowscape

@@ -66,6 +66,6 @@ struct TruthPlan {
   TruthRequest request;
   std::vector<int> steps;  // of request.more: its k-th target is frame + steps[k]
 };
-TruthPlan truth_plan(const Sequence& sequence, const Layout& layout, int frame, int frames);
+TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int frame, int frames);
 
 }  // namespace flowscape

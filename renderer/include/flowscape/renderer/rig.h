@@ -1,0 +1,50 @@
+#pragma once
+// A rig: named cameras, each a projection (a lens of lens.h, or the equirectangular panorama) and a
+// mount in the rig frame (x forward, y left, z up). The `flowscape` rig is the ERP and the six
+// cube faces at the rig's origin, written as the release always has (no cameras listed here).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "flowscape/renderer/projection.h"
+#include "flowscape/renderer/renderer.h"
+
+namespace flowscape {
+
+struct RigCamera {
+  std::string name;       // its folder: cameras/<name>
+  Projection projection;  // the model and its image; rotation: camera -> rig
+  Vec3 position = Vec3::Zero();  // of the optical centre in the rig frame, metres
+  Pose mount() const;            // camera -> rig
+};
+
+struct Rig {
+  std::string name;                // a preset's name or the rig file's
+  std::vector<RigCamera> cameras;  // empty: the flowscape rig
+};
+
+inline constexpr const char* kFlowscapeRig = "flowscape";
+// Rig presets besides flowscape: "fisheye", "woodscape", "pal", "dual-fisheye".
+std::vector<std::string> rig_presets();
+// A preset's cameras, their images scaled to `size` (the release's ERP height): fisheye and pal
+// size^2, dual-fisheye size x 2 size, woodscape 1.25 size x 0.94 size (WoodScape's aspect).
+// Throws std::invalid_argument for other names.
+Rig rig_preset(const std::string& name, int size);
+
+// A rig file: {"name": ..., "cameras": [{"name", "model", "parameters", "mount": {"position":
+// [x, y, z], "camera_to_rig": 3x3 rows | "yaw_pitch_roll_degrees": [y, p, r]}}]}; model
+// "equirectangular" takes parameters {"height"} and a mount without rotation. Throws
+// std::invalid_argument naming what is wrong (docs/cameras.md).
+Rig rig_from_json(const nlohmann::json& json);
+// What meta.json records and rig_from_json reads back.
+nlohmann::json to_json(const Rig& rig);
+
+// The camera's rotation for yaw (left, about the rig's z), then pitch (up), then roll (about its
+// forward axis, right-handed), starting from looking forward (the front face's frame).
+Mat3 look(double yaw_degrees, double pitch_degrees, double roll_degrees);
+
+// The request as the camera sees it: every moment's rig moved to the camera's optical centre (its
+// position turned with the rig, so a rotation's lever arm moves it too).
+TruthRequest at_camera(const TruthRequest& request, const RigCamera& camera);
+
+}  // namespace flowscape

@@ -1,0 +1,162 @@
+#include "flowscape/renderer/rig.h"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+namespace flowscape {
+namespace {
+
+constexpr double kDegree = kPi / 180;
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("rig: " + what);
+}
+
+Vec3 vector3(const nlohmann::json& value, const std::string& what) {
+  require(value.is_array() && value.size() == 3, what + " must be 3 numbers");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    require(value[std::size_t(i)].is_number(), what + " must be 3 numbers");
+    v[i] = value[std::size_t(i)].get<double>();
+  }
+  require(v.allFinite(), what + " must be finite");
+  return v;
+}
+
+Mat3 rotation_rows(const nlohmann::json& rows, const std::string& what) {
+  require(rows.is_array() && rows.size() == 3, what + " must be 3 rows of 3 numbers");
+  Mat3 m;
+  for (int r = 0; r < 3; ++r) m.row(r) = vector3(rows[std::size_t(r)], what).transpose();
+  require((m.transpose() * m - Mat3::Identity()).norm() < 1e-6 && m.determinant() > 0,
+          what + " must be a rotation (orthonormal, determinant 1)");
+  return m;
+}
+
+nlohmann::json rows(const Mat3& m) {
+  return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
+}
+
+RigCamera camera_from_json(const nlohmann::json& c) {
+  require(c.is_object(), "every camera must be an object");
+  const std::string name = c.value("name", "");
+  require(!name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") ==
+                               std::string::npos,
+          "camera names are lower-case letters, digits, - and _ (got \"" + name + "\")");
+  const std::string what = "camera \"" + name + "\": ";
+  const std::string model = c.value("model", "");
+  const nlohmann::json parameters = c.value("parameters", nlohmann::json::object());
+  const nlohmann::json mount = c.value("mount", nlohmann::json::object());
+  require(mount.is_object(), what + "\"mount\" must be an object");
+  RigCamera camera{name, {}, Vec3::Zero()};
+  if (mount.contains("position")) camera.position = vector3(mount.at("position"), what + "position");
+  Mat3 rotation = look(0, 0, 0);
+  if (mount.contains("camera_to_rig"))
+    rotation = rotation_rows(mount.at("camera_to_rig"), what + "camera_to_rig");
+  else if (mount.contains("yaw_pitch_roll_degrees")) {
+    const Vec3 a = vector3(mount.at("yaw_pitch_roll_degrees"), what + "yaw_pitch_roll_degrees");
+    rotation = look(a[0], a[1], a[2]);
+  }
+  try {
+    if (model == "equirectangular") {
+      const int height = parameters.value("height", 0);
+      require(height >= 2 && height <= 8192, what + "equirectangular \"height\" must be in 2..8192");
+      require(!mount.contains("camera_to_rig") && !mount.contains("yaw_pitch_roll_degrees"),
+              what + "an equirectangular camera keeps the rig's axes (no rotation)");
+      camera.projection = Projection::equirectangular(height);
+    } else {
+      camera.projection = Projection::of_lens(make_lens(model, parameters), rotation);
+    }
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    throw std::invalid_argument(message.starts_with("rig: ") ? message : "rig: " + what + message);
+  }
+  return camera;
+}
+
+}  // namespace
+
+Pose RigCamera::mount() const {
+  Pose pose = Pose::Identity();
+  pose.linear() = projection.camera_to_rig();
+  pose.translation() = position;
+  return pose;
+}
+
+Mat3 look(double yaw_degrees, double pitch_degrees, double roll_degrees) {
+  Mat3 forward;  // camera x right = rig -y, y down = rig -z, z forward = rig x
+  forward << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return (Eigen::AngleAxisd(yaw_degrees * kDegree, Vec3::UnitZ()) *
+          Eigen::AngleAxisd(-pitch_degrees * kDegree, Vec3::UnitY()) *
+          Eigen::AngleAxisd(roll_degrees * kDegree, Vec3::UnitX()))
+             .toRotationMatrix() *
+         forward;
+}
+
+std::vector<std::string> rig_presets() { return {"fisheye", "woodscape", "pal", "dual-fisheye"}; }
+
+Rig rig_preset(const std::string& name, int size) {
+  const auto camera = [](std::string n, std::shared_ptr<const Lens> lens, Vec3 position,
+                         const Mat3& rotation) {
+    return RigCamera{std::move(n), Projection::of_lens(std::move(lens), rotation), position};
+  };
+  if (name == "fisheye")  // one forward-looking 200-degree fisheye at the rig's origin
+    return {name, {camera("front", kannala_brandt_200(size), Vec3::Zero(), look(0, 0, 0))}};
+  if (name == "woodscape") {  // WoodScape's four: bumpers and mirrors, pitched down
+    const int W = 2 * ((5 * size / 4 + 1) / 2), H = 2 * ((W * 966 / 1280 + 1) / 2);
+    const auto lens = woodscape_190(W, H);
+    return {name,
+            {camera("front", lens, {2.0, 0, -1.0}, look(0, -20, 0)),
+             camera("rear", lens, {-2.3, 0, -0.8}, look(180, -20, 0)),
+             camera("mirror_left", lens, {0.8, 1.0, -0.6}, look(90, -40, 0)),
+             camera("mirror_right", lens, {0.8, -1.0, -0.6}, look(-90, -40, 0))}};
+  }
+  if (name == "pal")  // the paper's robot: a panoramic annular lens on a mast, axis up
+    return {name, {camera("pal", panoramic_annular(size, 60), {0, 0, 0.5}, look(0, 90, 0))}};
+  if (name == "dual-fisheye")  // a consumer 360 camera on the roof, lenses forward and back
+    return {name, {camera("dual", dual_fisheye_190(size), {0, 0, 0.2}, look(0, 0, 0))}};
+  std::string known = kFlowscapeRig;
+  for (const std::string& p : rig_presets()) known += ", " + p;
+  throw std::invalid_argument("unknown rig \"" + name + "\" (" + known + ", or a rig file .json)");
+}
+
+Rig rig_from_json(const nlohmann::json& json) {
+  require(json.is_object(), "expected a JSON object {\"name\", \"cameras\"}");
+  Rig rig{json.value("name", "custom"), {}};
+  const nlohmann::json cameras = json.value("cameras", nlohmann::json());
+  require(cameras.is_array() && !cameras.empty() && cameras.size() <= 16,
+          "\"cameras\" must list 1 to 16 cameras");
+  std::set<std::string> names;
+  for (const nlohmann::json& c : cameras) {
+    rig.cameras.push_back(camera_from_json(c));
+    require(names.insert(rig.cameras.back().name).second,
+            "two cameras are named \"" + rig.cameras.back().name + "\"");
+  }
+  return rig;
+}
+
+nlohmann::json to_json(const Rig& rig) {
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const RigCamera& c : rig.cameras) {
+    const bool erp = c.projection.kind == Projection::Kind::Equirectangular;
+    nlohmann::json mount = {{"position", {c.position.x(), c.position.y(), c.position.z()}}};
+    if (!erp) mount["camera_to_rig"] = rows(c.projection.rotation);
+    cameras.push_back({{"name", c.name},
+                       {"model", erp ? "equirectangular" : c.projection.lens->model()},
+                       {"parameters", erp ? nlohmann::json{{"height", c.projection.height}}
+                                          : c.projection.lens->parameters()},
+                       {"mount", mount}});
+  }
+  return {{"name", rig.name}, {"cameras", cameras}};
+}
+
+TruthRequest at_camera(const TruthRequest& request, const RigCamera& camera) {
+  const Eigen::Translation3d offset(camera.position);
+  TruthRequest moved = request;
+  moved.pair.rig = request.pair.rig * offset;
+  moved.pair.next_rig = request.pair.next_rig * offset;
+  for (Moment& m : moved.more) m.rig = m.rig * offset;
+  return moved;
+}
+
+}  // namespace flowscape
