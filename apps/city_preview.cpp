@@ -30,7 +30,8 @@ struct Options {
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
   std::vector<std::string> weathers;  // when given: one row per weather, of the first map
   std::map<std::string, std::string> models;
-  bool plan = false;  // seen from above instead of from the ego
+  std::vector<std::string> rigs;  // when given: one row per camera of each rig, of the first map
+  bool plan = false;              // seen from above instead of from the ego
 };
 
 // A pinhole 40 degrees wide looking straight down on the middle of the map's roads, north up,
@@ -86,6 +87,36 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
           semantic_to_color(gt.semantic.view())};
 }
 
+// One row per camera of a rig (the flowscape rig: its ERP), colour | flow | semantics of map
+// `map`, each camera at its own mount, as a release renders them; labelled "<rig> <camera>".
+std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int map,
+                                                         const std::string& rig_name) {
+  ReleaseConfig config = o.color;
+  config.rig = rig_name, config.height = o.height;
+  const Rig rig = release_rig(config);
+  if (rig.cameras.empty()) {
+    std::vector<std::vector<Image<std::uint8_t>>> rows{render_row(o, map, "sunny")};
+    label_tile(rows[0][0], rig_name + " erp, " + map_name(map) + " sunny");
+    return rows;
+  }
+  const int frame = int(std::lround(o.time * kFrameRate));
+  const Sequence sequence = make_sequence(
+      {map, "sunny", o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
+  Renderer renderer(sequence.city.scene);
+  std::vector<std::vector<Image<std::uint8_t>>> rows;
+  for (const RigCamera& camera : rig.cameras) {
+    const TruthRequest request = at_camera(TruthRequest{sequence.frame_pair(frame)}, camera);
+    const GroundTruth gt = renderer.ground_truth(camera.projection, request);
+    const Image<float> color =
+        release_color(config, sequence, renderer, camera.projection, request.pair, frame, gt);
+    rows.push_back({linear_to_srgb8(color.view()),
+                    flow_to_color(gt.flow.view(), gt.valid.view(), {}),
+                    semantic_to_color(gt.semantic.view())});
+    label_tile(rows.back()[0], rig.name + " " + camera.name);
+  }
+  return rows;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -123,6 +154,10 @@ int main(int argc, char** argv) {
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
   app.add_option("--gltf", o.gltf_dir,
                  "also write <map>.gltf and its scene record <map>.json here");
+  app.add_option("--rigs", o.rigs,
+                 "one row per camera of each rig (flowscape, fisheye, woodscape, pal, "
+                 "dual-fisheye, or a rig file .json) of the first map, each camera's image "
+                 "scaled by --height as a release scales it");
   app.add_flag("--plan", o.plan,
                "each map seen from above (colour and semantics, --height pixels square) instead "
                "of from the ego");
@@ -131,8 +166,16 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
     o.models = parse_models(models);
-    const std::size_t rows = o.weathers.empty() ? o.maps.size() : o.weathers.size();
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
+    for (const std::string& rig : o.rigs) {
+      const auto rows = render_rig(o, o.maps[0], rig);
+      sheet.insert(sheet.end(), rows.begin(), rows.end());
+      std::printf("rig %s: %zu camera(s)\n", rig.c_str(), rows.size());
+      std::fflush(stdout);
+    }
+    const std::size_t rows = !o.rigs.empty()      ? 0
+                             : o.weathers.empty() ? o.maps.size()
+                                                  : o.weathers.size();
     for (std::size_t row = 0; row < rows; ++row) {
       const auto start = std::chrono::steady_clock::now();
       const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];

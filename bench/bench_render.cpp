@@ -2,7 +2,7 @@
 // sky): primary-ray ground truth and path-traced colour in million rays per second per core, and
 // seconds per panoramic frame (6 x F^2 faces stitched to H x 2H ERP) next to a primary-rays-only
 // frame. Usage: bench_render [face size (0: no cube rig)] [ERP height] [samples per pixel]
-// [threads]
+// [threads]; then each camera model's cost per pixel against a pinhole face of the same size
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "flowscape/renderer/renderer.h"
+#include "flowscape/renderer/rig.h"
 #include "flowscape/scenes/test_scenes.h"
 #include "flowscape/stitcher/stitch.h"
 
@@ -56,6 +57,61 @@ Scene street_fixture() {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Each camera model's cost per pixel it sees (ground truth, colour), against the pinhole face of
+// the same size in the same run; images F wide (the dual fisheye's two halves F / 2 high). The
+// views see different parts of the street, so scene content moves the figures too.
+void camera_models(Renderer& renderer, const FramePair& frames, const RenderOptions& options,
+                   int F) {
+  struct Model {
+    const char* name;
+    Projection projection;
+  };
+  const Mat3 forward = face_rotation(Face::Front);
+  const std::vector<Model> models{
+      {"pinhole face (baseline)", Projection::cube_face(Face::Front, F)},
+      {"pinhole, OpenCV distortion",
+       Projection::of_lens(
+           make_lens("pinhole",
+                     {{"width", F},
+                      {"height", F},
+                      {"K", {{F / 2.0, 0, F / 2.0 - 0.5}, {0, F / 2.0, F / 2.0 - 0.5}, {0, 0, 1}}},
+                      {"D", {-0.2, 0.05, 0.001, 0.001, 0}}}),
+           forward)},
+      {"Kannala-Brandt 200", Projection::of_lens(kannala_brandt_200(F), forward)},
+      {"double sphere",
+       Projection::of_lens(
+           make_lens("double_sphere",
+                     {{"width", F},
+                      {"height", F},
+                      {"K", {{F / 4.0, 0, F / 2.0 - 0.5}, {0, F / 4.0, F / 2.0 - 0.5}, {0, 0, 1}}},
+                      {"xi", -0.2},
+                      {"alpha", 0.6},
+                      {"max_angle_degrees", 100}}),
+           forward)},
+      {"WoodScape 190", Projection::of_lens(woodscape_190(F, F * 3 / 4), forward)},
+      {"dual fisheye 190", Projection::of_lens(dual_fisheye_190(F / 2), forward)},
+      {"panoramic annular", Projection::of_lens(panoramic_annular(F, 60), look(0, 90, 0))},
+  };
+  std::printf("  camera models, %d px wide (cost per pixel seen: ground truth, colour)\n", F);
+  double base_truth = 0, base_color = 0;
+  for (const Model& m : models) {
+    const Projection& p = m.projection;
+    int seen = 0;
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x) seen += p.covers(Vec2(x + 0.5, y + 0.5));
+    auto start = std::chrono::steady_clock::now();
+    renderer.ground_truth(p, frames);
+    const double truth = seconds_since(start) / seen * 1e9;
+    start = std::chrono::steady_clock::now();
+    renderer.color(p, frames, options);
+    const double color = seconds_since(start) / seen * 1e9;
+    if (base_truth == 0) base_truth = truth, base_color = color;
+    std::printf("    %-28s %5.1f %% seen  truth %7.0f ns/px (%.2fx)  colour %8.0f ns/px (%.2fx)\n",
+                m.name, 100.0 * seen / (p.width * p.height), truth, truth / base_truth, color,
+                color / base_color);
+  }
 }
 
 }  // namespace
@@ -119,5 +175,6 @@ int main(int argc, char** argv) {
       H, 2 * H, render_seconds, stitch_seconds, render_seconds + stitch_seconds);
   std::printf("  baseline: the same frame with primary rays only (no colour)   %.2f s\n",
               primary_only + stitch_seconds);
+  camera_models(renderer, frames, options, F);
   return 0;
 }

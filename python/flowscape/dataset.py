@@ -86,6 +86,10 @@ class FlowScape:
     asked kind are items. Flow keeps the release's stored form (see the manifest's
     conventions); unknown flow values (1e10) are left in.
 
+    camera: a camera of the release's rig (gen_flowscape --rig; ReleaseLayout(root).cameras) to
+    read instead of the ERP: its own image and flow (fisheye, PAL, ...; flowscape.camera_model
+    projects and unprojects it); a rig without an ERP needs one.
+
     root: a release folder (or its panoflow/ folder); split: 'train' or 'test';
     weathers: None or a list such as ['fog', 'rain']; flow_mode: '360' or 'classic';
     exclude_sky: drop sky pixels from valid (needs semantics); exclude_poles: drop the rows within
@@ -101,7 +105,7 @@ class FlowScape:
 
     def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
                  extras=(), transform=None, as_tensors=True, exclude_poles=0.0, max_flow=None,
-                 faces=None, outputs=()):
+                 faces=None, outputs=(), camera=None):
         if split not in ("train", "test"):
             raise ValueError(f"split must be 'train' or 'test', not {split!r}")
         if flow_mode not in ("360", "classic"):
@@ -110,10 +114,13 @@ class FlowScape:
         self.extras, self.transform, self.as_tensors = tuple(extras), transform, as_tensors
         self.exclude_poles, self.max_flow = float(exclude_poles), max_flow
         self.faces = None if faces is None else tuple(faces)
-        self.outputs = tuple(outputs)
+        self.outputs, self.camera = tuple(outputs), camera
+        if camera is not None and faces is not None:
+            raise ValueError("give faces or a camera, not both")
         # the stored flow's form and unknown marker: a release's manifest states them
         # (conventions); the PanoFlow tree's flow is read as it is stored
         self.stored_seam, self.unknown_flow = "360", UNKNOWN_FLOW
+        self.panorama = self.faces is None  # a camera of a rig may say otherwise
         if self.faces is not None and (set(self.faces) - set(FACES) or not self.faces):
             raise ValueError(f"faces must be some of {FACES}, not {faces!r}")
         if os.path.isfile(os.path.join(self.root, "manifest.json")):
@@ -134,6 +141,13 @@ class FlowScape:
         layout = ReleaseLayout(self.root)
         self.stored_seam = layout.conventions["flow"]["erp_seam"]
         self.unknown_flow = float(layout.conventions["flow"].get("unknown_value", UNKNOWN_FLOW))
+        if self.camera is None and layout.cameras and self.faces is None:
+            raise ValueError(f"{self.root}: its rig has no ERP; pick a camera: "
+                             f"{', '.join(layout.cameras)}")
+        if self.camera is not None and self.camera not in layout.cameras:
+            raise ValueError(f"{self.root}: no camera {self.camera!r} (the rig has "
+                             f"{', '.join(layout.cameras) or 'the ERP and the cube only'})")
+        self.panorama = self.faces is None and layout.is_panorama(self.camera)
         missing = [kind for kind in self.outputs if kind not in layout.kinds]
         if missing:
             raise ValueError(f"{self.root}: the release has no {', '.join(missing)} (it holds "
@@ -156,15 +170,15 @@ class FlowScape:
                 continue
             if weathers is None or weather in weathers:
                 for face in self.faces or (None,):
-                    item = {kind: layout.frame_file(scene, kind, frame, face)
-                            for kind in ("flow", "valid", "semantic")}
-                    item["outputs"] = {kind: (layout.frame_file(scene, kind, at[kind], face),
+                    def file(kind, at_frame):
+                        return layout.frame_file(scene, kind, at_frame, face, self.camera)
+                    item = {kind: file(kind, frame) for kind in ("flow", "valid", "semantic")}
+                    item["outputs"] = {kind: (file(kind, at[kind]),
                                               layout.kinds[kind]["resampling"] == "flow")
                                        for kind in self.outputs}
-                    item.update(img1=layout.frame_file(scene, "color", frame, face),
-                                img2=layout.frame_file(scene, "color", frame + 1, face),
+                    item.update(img1=file("color", frame), img2=file("color", frame + 1),
                                 meta={"scene": scene, "frame": frame, "weather": weather,
-                                      "map": map_name, "face": face})
+                                      "map": map_name, "face": face, "camera": self.camera})
                     items.append(item)
         return items
 
@@ -213,7 +227,7 @@ class FlowScape:
         valid = known.copy()
         if "valid" in item:
             valid &= read_image(item["valid"])[..., 0] > 0
-        panorama = self.faces is None
+        panorama = self.panorama
         if panorama and self.exclude_poles > 0:
             valid &= pole_mask(valid.shape[0], self.exclude_poles)[:, None]
         if self.max_flow is not None:

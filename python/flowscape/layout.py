@@ -50,11 +50,26 @@ class ReleaseLayout:
     def sequence_dir(self, sequence):
         return os.path.join(self.root, self.layout["sequence_dir"].format(sequence=sequence))
 
-    def frame_file(self, sequence, kind, frame, face=None):
-        """The file of output kind `kind` ('color', 'flow', ...) of a frame, ERP or one cube face."""
+    @property
+    def cameras(self):
+        """The cameras of a rig other than flowscape (names), [] for the ERP and its cube."""
+        return [camera["name"] for camera in self.layout.get("cameras", [])]
+
+    def is_panorama(self, camera=None):
+        """Whether a view's image wraps round horizontally (the ERP, an equirectangular camera)."""
+        if camera is None:
+            return True
+        return any(c["name"] == camera and c.get("panorama") for c in self.layout.get("cameras", []))
+
+    def frame_file(self, sequence, kind, frame, face=None, camera=None):
+        """The file of output kind `kind` ('color', 'flow', ...) of a frame: the ERP, one cube face,
+        or one camera of another rig."""
         row = self.kinds[kind]
         views = self.layout["views"]
-        view = views["erp"] if face is None else views["cube"].format(face=face)
+        if camera is not None:
+            view = views["camera"].format(camera=camera)
+        else:
+            view = views["erp"] if face is None else views["cube"].format(face=face)
         name = self.layout["frame_file"].format(view=view, folder=row["folder"], frame=int(frame),
                                                 extension=row["extension"])
         return os.path.join(self.sequence_dir(sequence), name)

@@ -87,7 +87,7 @@ class EmbreeScene {
   // A top-level scene instancing every BVH, posed at `time`.
   struct PosedScene {
     RTCScene top = nullptr;
-    std::vector<Pose> poses;
+    std::vector<Pose> poses{};
     double time = 0;
     bool posed = false;
   };

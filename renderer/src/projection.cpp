@@ -55,7 +55,9 @@ namespace {
 double lens_span(const Lens& lens, Vec2 pixel, Vec2 axis) {
   const std::optional<Vec3> centre = lens.ray(pixel), a = lens.ray(pixel - axis / 2),
                             b = lens.ray(pixel + axis / 2);
-  const auto angle = [](const Vec3& u, const Vec3& v) { return std::atan2(u.cross(v).norm(), u.dot(v)); };
+  const auto angle = [](const Vec3& u, const Vec3& v) {
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
   if (a && b) return angle(*a, *b);
   if (centre && (a || b)) return 2 * angle(*centre, a ? *a : *b);
   return 0;
@@ -66,7 +68,8 @@ double lens_span(const Lens& lens, Vec2 pixel, Vec2 axis) {
 double Projection::pixel_spread(Vec2 pixel) const {
   if (kind == Kind::Equirectangular) return 2 * kPi / width;
   if (kind == Kind::Lens)
-    return std::sqrt(lens_span(*lens, pixel, Vec2::UnitX()) * lens_span(*lens, pixel, Vec2::UnitY()));
+    return std::sqrt(lens_span(*lens, pixel, Vec2::UnitX()) *
+                     lens_span(*lens, pixel, Vec2::UnitY()));
   const Vec2 offset = (pixel - Vec2(width / 2.0, height / 2.0)) / focal;
   const double cos_axis = 1 / std::sqrt(1 + offset.squaredNorm());
   return std::pow(cos_axis, 1.5) / focal;

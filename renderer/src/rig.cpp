@@ -40,8 +40,8 @@ nlohmann::json rows(const Mat3& m) {
 RigCamera camera_from_json(const nlohmann::json& c) {
   require(c.is_object(), "every camera must be an object");
   const std::string name = c.value("name", "");
-  require(!name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") ==
-                               std::string::npos,
+  require(!name.empty() &&
+              name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos,
           "camera names are lower-case letters, digits, - and _ (got \"" + name + "\")");
   const std::string what = "camera \"" + name + "\": ";
   const std::string model = c.value("model", "");
@@ -49,7 +49,8 @@ RigCamera camera_from_json(const nlohmann::json& c) {
   const nlohmann::json mount = c.value("mount", nlohmann::json::object());
   require(mount.is_object(), what + "\"mount\" must be an object");
   RigCamera camera{name, {}, Vec3::Zero()};
-  if (mount.contains("position")) camera.position = vector3(mount.at("position"), what + "position");
+  if (mount.contains("position"))
+    camera.position = vector3(mount.at("position"), what + "position");
   Mat3 rotation = look(0, 0, 0);
   if (mount.contains("camera_to_rig"))
     rotation = rotation_rows(mount.at("camera_to_rig"), what + "camera_to_rig");
@@ -60,7 +61,8 @@ RigCamera camera_from_json(const nlohmann::json& c) {
   try {
     if (model == "equirectangular") {
       const int height = parameters.value("height", 0);
-      require(height >= 2 && height <= 8192, what + "equirectangular \"height\" must be in 2..8192");
+      require(height >= 2 && height <= 8192,
+              what + "equirectangular \"height\" must be in 2..8192");
       require(!mount.contains("camera_to_rig") && !mount.contains("yaw_pitch_roll_degrees"),
               what + "an equirectangular camera keeps the rig's axes (no rotation)");
       camera.projection = Projection::equirectangular(height);

@@ -435,3 +435,86 @@ def test_meta_json_boxes_and_actors_match_the_files(all_kinds_release):
         assert front["K"] == [[8.0, 0, 7.5], [0, 8.0, 7.5], [0, 0, 1]]
     card = (all_kinds_release / "README.md").read_text()
     assert "| scene_flow | all but the last 1 |" in card and "bytes per frame" in card
+
+
+@pytest.fixture(scope="session")
+def rig_releases(tmp_path_factory):
+    """One small release per rig preset, split."""
+    out = {}
+    for rig in ("fisheye", "woodscape", "pal", "dual-fisheye"):
+        root = tmp_path_factory.mktemp(rig)
+        subprocess.run([f"{BIN}/gen_flowscape", "--rig", rig, "--maps", "1",
+                        "--sequences-per-map", "2", "--frames", "2", "--resolution", "48",
+                        "--spp", "1", "--vehicles", "20", "--pedestrians", "10",
+                        "--out", str(root)], check=True, capture_output=True)
+        subprocess.run([f"{BIN}/flowscape_split", str(root)], check=True, capture_output=True)
+        out[rig] = root
+    return out
+
+
+def test_numpy_models_round_trip_and_mask_what_the_renderer_masks(rig_releases):
+    for rig, root in rig_releases.items():
+        layout = flowscape.ReleaseLayout(root)
+        meta = layout.meta("map00_seq00")
+        for camera in layout.cameras:
+            view = meta["views"][f"cameras/{camera}"]
+            model = flowscape.camera_model(view)
+            h, w = view["height"], view["width"]
+            y, x = np.mgrid[0:h, 0:w] + 0.5
+            pixels = np.stack([x, y], -1)
+            rays, seen = model.unproject(pixels)
+            back, ok = model.project(rays)
+            own = seen & ok
+            if view["model"] == "dual_fisheye":  # the ring past 90 degrees belongs to the other lens
+                own &= np.where(x >= h, -rays[..., 2], rays[..., 2]) >= 0
+            assert np.abs(back - pixels)[own].max() < 1e-6, (rig, camera)
+            depth = io.read_image(layout.frame_file("map00_seq00", "depth", 0, camera=camera))[..., 0]
+            # what the renderer leaves unseen (NaN depth) is what the numpy model cannot unproject
+            assert np.array_equal(np.isnan(depth), ~seen), (rig, camera)
+
+
+def test_a_static_point_seen_off_the_rig_origin_flows_to_its_projection_by_both_poses(rig_releases):
+    """The flow of a camera mounted off the rig's origin follows from its own pose at both times
+    (meta.json's views[...]["poses"], camera -> world), the point from its depth and ray."""
+    for rig in ("woodscape", "pal", "fisheye"):
+        root = rig_releases[rig]
+        layout = flowscape.ReleaseLayout(root)
+        meta = layout.meta("map00_seq00")
+        for camera in layout.cameras:
+            view = meta["views"][f"cameras/{camera}"]
+            model = flowscape.camera_model(view)
+            pose0, pose1 = flowscape.camera_poses(view)[:2]
+            depth = io.read_image(layout.frame_file("map00_seq00", "depth", 0, camera=camera))[..., 0]
+            ids = io.read_image(layout.frame_file("map00_seq00", "instance", 0, camera=camera))[..., 0]
+            flow = io.read_flo(layout.frame_file("map00_seq00", "flow", 0, camera=camera))
+            h, w = depth.shape
+            y, x = np.mgrid[0:h, 0:w] + 0.5
+            rays, seen = model.unproject(np.stack([x, y], -1))
+            static = seen & np.isfinite(depth) & (ids == 0) & (np.abs(flow[..., 0]) < 1e9)
+            point = rays * depth[..., None]  # camera frame at frame 0
+            world = point @ pose0[:3, :3].T + pose0[:3, 3]
+            then = (world - pose1[:3, 3]) @ pose1[:3, :3]  # camera frame at frame 1
+            target, ok = model.project(then)
+            use = static & ok
+            assert use.sum() > 0.3 * h * w, (rig, camera)
+            error = np.hypot(x + flow[..., 0] - target[..., 0], y + flow[..., 1] - target[..., 1])
+            assert np.median(error[use]) < 1e-4 and error[use].max() < 1e-2, (rig, camera)
+            offset = np.array(view["translation_in_rig"])
+            if rig != "fisheye":
+                assert np.linalg.norm(offset) > 0.4  # really off the origin
+
+
+def test_the_plugin_reads_every_camera_and_gt_quality_scores_them(rig_releases):
+    root = rig_releases["woodscape"]
+    layout = flowscape.ReleaseLayout(root)
+    assert layout.cameras == ["front", "rear", "mirror_left", "mirror_right"]
+    for camera in layout.cameras:
+        data = flowscape.FlowScape(root, "train", camera=camera)
+        img1, img2, flow, valid = data[0]
+        assert img1.shape[1:] == flow.shape[1:] and float(valid.mean()) > 0.3
+    with pytest.raises(ValueError, match="its rig has no ERP; pick a camera"):
+        flowscape.FlowScape(root, "train")
+    report = subprocess.run([f"{BIN}/gt_quality", "-q", str(root)], check=True,
+                            capture_output=True, text=True).stdout
+    for camera in layout.cameras:
+        assert f"/map00_seq00/{camera}" in report or f"/map00_seq01/{camera}" in report

@@ -107,8 +107,9 @@ TEST_CASE("a release's manifest says which kinds and conventions gt_quality read
   write_image(seq / "erp/valid/000000.png", ones);
   write_flow(seq / "erp/flow_backward/000001.flo", constant_flow(-1, 0).view(), ones.view());
   write_image(seq / "erp/valid_backward/000001.png", ones);
-  nlohmann::json manifest = {{"layout", layout_json(ReleaseLayout::of({"flow_backward"}, {1}, false))},
-                             {"conventions", conventions_json()}};
+  nlohmann::json manifest = {
+      {"layout", layout_json(ReleaseLayout::of({"flow_backward"}, {1}, false))},
+      {"conventions", conventions_json()}};
   write_text(root / "manifest.json", manifest.dump());
   const FlowDataset found = find_flow_dataset(root);
   REQUIRE(found.pairs.size() == 1);

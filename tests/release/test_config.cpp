@@ -120,3 +120,13 @@ TEST_CASE("outputs and flow gaps are checked like every other key") {
   CHECK(to_json(c)["flow_gaps"] == nlohmann::json{1, 3});
   CHECK(release_layout(ReleaseConfig{}).has("flow_backward"));
 }
+
+TEST_CASE("the rig is a preset or a rig file, named when it is neither") {
+  CHECK_THROWS_WITH(release_config_from_json(nlohmann::json::parse(R"({"rig": "gopro"})")),
+                    Catch::Contains("unknown rig \"gopro\" (flowscape, fisheye, woodscape"));
+  CHECK_THROWS_WITH(release_config_from_json(nlohmann::json::parse(R"({"rig": "/nowhere.json"})")),
+                    Catch::Contains("/nowhere.json: file not found"));
+  const ReleaseConfig pal = release_config_from_json(nlohmann::json::parse(R"({"rig": "pal"})"));
+  CHECK(release_layout(pal).cameras == std::vector<LayoutCamera>{{"pal", false}});
+  CHECK(release_layout(ReleaseConfig{}).has_erp());
+}

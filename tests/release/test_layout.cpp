@@ -91,7 +91,8 @@ TEST_CASE("a layout holds the six, the picked kinds and each per-gap kind at eve
   CHECK_THROWS_WITH(ReleaseLayout::of({"normals"}, {1}, true),
                     Catch::Contains("pick from: all, flow_backward, valid_backward"));
   CHECK_THROWS_WITH(ReleaseLayout::of({}, {2}, true), Catch::Contains("flow gaps must include 1"));
-  CHECK_THROWS_WITH(ReleaseLayout::of({}, {1, 0}, true), Catch::Contains("flow gap 0 is out of range"));
+  CHECK_THROWS_WITH(ReleaseLayout::of({}, {1, 0}, true),
+                    Catch::Contains("flow gap 0 is out of range"));
 }
 
 TEST_CASE("the layout in manifest.json states the same paths as templates") {

@@ -93,7 +93,8 @@ TEST_CASE("every actor's recorded box holds its vertices and its velocity is its
 TEST_CASE("a frame's truth request has a target per flow step of its layout") {
   const ReleaseConfig config = tiny_release_config(1, 6);
   const Sequence s = make_sequence(sequence_spec(config, plan_sequences(config).front()));
-  const ReleaseLayout layout = ReleaseLayout::of({"flow_backward", "scene_flow", "normal"}, {1, 2}, true);
+  const ReleaseLayout layout =
+      ReleaseLayout::of({"flow_backward", "scene_flow", "normal"}, {1, 2}, true);
   const TruthPlan middle = truth_plan(s, layout, 2, 6);
   CHECK(middle.steps == std::vector<int>{2, -1, -2});
   REQUIRE(middle.request.more.size() == 3);

@@ -117,3 +117,46 @@ TEST_CASE("a rerun skips finished frames and redoes a damaged one to the same by
   CHECK(file_bytes(kept) == kept_bytes);
   CHECK_FALSE(fs::exists(seq / "erp" / "flow" / ".partial-4242-000001.flo"));
 }
+
+TEST_CASE("a rig's cameras each write every kind in their own folder, and meta.json says how") {
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(1, 2);
+  config.rig = "woodscape";
+  write(config, dir.path);
+  const fs::path seq = sequence_dir(dir.path, "map00_seq00");
+  const ReleaseLayout layout = release_layout(config);
+  REQUIRE(layout.cameras.size() == 4);
+  CHECK_FALSE(layout.has_erp());
+  CHECK_FALSE(fs::exists(seq / "erp"));
+  for (const fs::path& file : layout.sequence_files(2)) {
+    INFO(file);
+    REQUIRE(fs::exists(seq / file));
+    if (file.begin()->string() != "cameras") continue;
+    const OutputKind& kind = *release_kind(file.parent_path().filename().string())->row;
+    if (kind.is_flow()) continue;
+    const AnyImage image = read_any_image(seq / file);
+    std::visit([&](const auto& i) { CHECK((i.width == 20 && i.height == 16)); }, image);
+  }
+  const nlohmann::json meta = read_json(seq / "meta.json");
+  const nlohmann::json& front = meta["views"]["cameras/front"];
+  CHECK(front["model"] == "woodscape");
+  CHECK(front["translation_in_rig"] == nlohmann::json{2.0, 0.0, -1.0});
+  CHECK(meta["rig"]["name"] == "woodscape");
+  // the camera's pose per frame: the rig's pose times its mount
+  REQUIRE(front["poses"].size() == 2);
+  const std::vector<double> rig = meta["poses"][1], camera = front["poses"][1];
+  Pose rig_pose = Pose::Identity(), camera_pose = Pose::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c)
+      rig_pose.matrix()(r, c) = rig[std::size_t(4 * r + c)],
+                           camera_pose.matrix()(r, c) = camera[std::size_t(4 * r + c)];
+  CHECK(camera_pose.translation().isApprox(rig_pose * Vec3(2, 0, -1), 1e-9));
+  CHECK(camera_pose.linear().isApprox(rig_pose.linear() * look(0, -20, 0), 1e-9));
+  // outside the image circle: nothing, in every kind
+  const Image<float> depth = read_image<float>(seq / "cameras/front/depth/000000.exr");
+  const Image<std::uint8_t> valid =
+      read_image<std::uint8_t>(seq / "cameras/front/valid/000000.png");
+  CHECK(std::isnan(*depth.pixel(0, 0)));
+  CHECK(*valid.pixel(0, 0) == 0);
+  CHECK(std::isfinite(*depth.pixel(10, 8)));
+}

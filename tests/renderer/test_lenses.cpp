@@ -30,12 +30,13 @@ std::vector<Sample> lenses() {
                                                 {"K", {{17, 0, 29.5}, {0, 17, 29.5}, {0, 0, 1}}},
                                                 {"max_angle_degrees", 100}})},
       {"kannala_brandt", kannala_brandt_200(64)},
-      {"double_sphere", make_lens("double_sphere", {{"width", 64},
-                                                    {"height", 64},
-                                                    {"K", {{16, 0, 31.5}, {0, 16, 31.5}, {0, 0, 1}}},
-                                                    {"xi", -0.2},
-                                                    {"alpha", 0.6},
-                                                    {"max_angle_degrees", 100}})},
+      {"double_sphere",
+       make_lens("double_sphere", {{"width", 64},
+                                   {"height", 64},
+                                   {"K", {{16, 0, 31.5}, {0, 16, 31.5}, {0, 0, 1}}},
+                                   {"xi", -0.2},
+                                   {"alpha", 0.6},
+                                   {"max_angle_degrees", 100}})},
       {"woodscape", woodscape_190(80, 60)},
       {"dual_fisheye", dual_fisheye_190(32)},
       {"panoramic_annular", panoramic_annular(64, 60)},
@@ -134,10 +135,11 @@ TEST_CASE("a rotation about a lens's optical axis turns its image about the prin
   };
   std::vector<Sample> radial = lenses();
   radial.erase(radial.begin());  // the pinhole's tangential terms are not symmetric
-  radial.push_back({"radial pinhole", make_lens("pinhole", {{"width", 48},
-                                                            {"height", 48},
-                                                            {"K", {{40, 0, 23.5}, {0, 40, 23.5}, {0, 0, 1}}},
-                                                            {"D", {-0.2, 0.05, 0, 0, 0.01}}})});
+  radial.push_back(
+      {"radial pinhole", make_lens("pinhole", {{"width", 48},
+                                               {"height", 48},
+                                               {"K", {{40, 0, 23.5}, {0, 40, 23.5}, {0, 0, 1}}},
+                                               {"D", {-0.2, 0.05, 0, 0, 0.01}}})});
   for (const Sample& s : radial) {
     INFO(s.name);
     const Projection camera = Projection::of_lens(s.lens, forward);
@@ -174,7 +176,8 @@ TEST_CASE("a rotation about a lens's optical axis turns its image about the prin
   }
 }
 
-TEST_CASE("image circles and the annulus end at their stated angles, and nothing is seen past them") {
+TEST_CASE(
+    "image circles and the annulus end at their stated angles, and nothing is seen past them") {
   // along each azimuth, the radius where a lens stops seeing: its ray there is at the stated angle
   struct Edge {
     std::shared_ptr<const Lens> lens;
@@ -224,13 +227,16 @@ TEST_CASE("bad lens parameters are named") {
   CHECK_THROWS_WITH(make_lens("kannala_brandt", {{"width", 64}, {"height", 64}}),
                     Catch::Contains("\"K\" must be 3 rows of 3"));
   const nlohmann::json K = {{30, 0, 31.5}, {0, 30, 31.5}, {0, 0, 1}};
-  CHECK_THROWS_WITH(make_lens("kannala_brandt", {{"width", 64}, {"height", 64}, {"K", K},
-                                                 {"D", {-0.5, 0, 0, 0}}, {"max_angle_degrees", 100}}),
+  CHECK_THROWS_WITH(make_lens("kannala_brandt", {{"width", 64},
+                                                 {"height", 64},
+                                                 {"K", K},
+                                                 {"D", {-0.5, 0, 0, 0}},
+                                                 {"max_angle_degrees", 100}}),
                     Catch::Contains("folds back before max_angle_degrees"));
   CHECK_THROWS_WITH(make_lens("woodscape", {{"width", 64}, {"height", 1e9}, {"k", {1, 0, 0, 0}}}),
                     Catch::Contains("\"height\" must be a whole number"));
-  CHECK_THROWS_WITH(make_lens("double_sphere", {{"width", 64}, {"height", 64}, {"K", K},
-                                                {"xi", 0.5}, {"alpha", 2}}),
+  CHECK_THROWS_WITH(make_lens("double_sphere",
+                              {{"width", 64}, {"height", 64}, {"K", K}, {"xi", 0.5}, {"alpha", 2}}),
                     Catch::Contains("\"alpha\" must be in [0, 1]"));
   CHECK_THROWS_WITH(panoramic_annular(64, 200), Catch::Contains("band must be in (0, 180)"));
 }

@@ -58,9 +58,9 @@ ReleaseLayout release_layout_of(const fs::path& root) {
   const fs::path manifest = root / kManifestFile;
   if (fs::exists(manifest)) {
     const nlohmann::json json = read_json(manifest);
-    check_conventions(json.is_object() ? json.value("conventions", nlohmann::json())
-                                       : nlohmann::json(),
-                      manifest);
+    check_conventions(
+        json.is_object() ? json.value("conventions", nlohmann::json()) : nlohmann::json(),
+        manifest);
   }
   return read_release_layout(root);
 }
@@ -80,18 +80,18 @@ FlowDataset flowscape_release(const fs::path& root) {
     for (const View& view : layout.views()) {
       if (view.face) continue;  // the faces are the ERP's sources
       const bool panorama =
-          view.is_erp() || std::any_of(layout.cameras.begin(), layout.cameras.end(),
-                                       [&](const LayoutCamera& c) {
-                                         return c.name == view.camera && c.panorama;
-                                       });
+          view.is_erp() ||
+          std::any_of(layout.cameras.begin(), layout.cameras.end(),
+                      [&](const LayoutCamera& c) { return c.name == view.camera && c.panorama; });
       const std::string group = seq.filename().string() + (view.is_erp() ? "" : "/" + view.camera);
       const auto file = [&](const ReleaseKind& kind, int frame) {
         return seq / frame_file(kind, view, frame);
       };
       for (int f = 0; flow.has_frame(f, meta.frames); ++f) {
         if (!fs::exists(file(flow, f))) continue;
-        PairFiles pair{file(color, f),  file(color, f + 1),   file(flow, f),
-                       file(valid, f),  VisibleMask::NonZero, group,
+        PairFiles pair{file(color, f),        file(color, f + 1),
+                       file(flow, f),         file(valid, f),
+                       VisibleMask::NonZero,  group,
                        meta.weather_preset(), panorama};
         if (backward)
           pair.backward = file(back, f + 1), pair.backward_visible = file(back_valid, f + 1);

@@ -191,8 +191,8 @@ std::string report_table(const QualityReport& report) {
                       occ = measure(r.visible_pairs, r.wpe_occluded, "%.2f"),
                       trip = measure(r.round_trip_pairs, 100 * r.round_trip_share(), "%.2f%%");
     std::snprintf(line, sizeof line, "%-*s %6d %8.2f %8.2f %7.1f%%  %-10s %10s %10s %8s\n",
-                  name_width, r.name.substr(0, 256).c_str(), r.pairs, r.pe, r.wpe, r.diff, quality_label(r.diff), noc.c_str(),
-                  occ.c_str(), trip.c_str());
+                  name_width, r.name.substr(0, 256).c_str(), r.pairs, r.pe, r.wpe, r.diff,
+                  quality_label(r.diff), noc.c_str(), occ.c_str(), trip.c_str());
     out << line;
   }
   return out.str();

@@ -127,7 +127,8 @@ void check_picked(const std::vector<std::string>& picked) {
 
 }  // namespace
 
-ReleaseLayout ReleaseLayout::of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube) {
+ReleaseLayout ReleaseLayout::of(const std::vector<std::string>& picked,
+                                const std::vector<int>& gaps, bool cube) {
   if (std::find(gaps.begin(), gaps.end(), 1) == gaps.end())
     throw std::invalid_argument("flow gaps must include 1 (the flow every tool reads)");
   for (int gap : gaps)

@@ -153,8 +153,10 @@ nlohmann::json to_json(const SequenceMeta& m) {
     for (Face face : kFaces) faces.push_back(face_name(face));
     j["cube"] = {{"face_size", m.face_size}, {"focal", m.face_size / 2.0}, {"faces", faces}};
   }
-  for (const auto& [key, record] :
-       {std::pair{"views", &m.views}, {"actors", &m.actors}, {"boxes_2d", &m.boxes}})
+  for (const auto& [key, record] : {std::pair{"views", &m.views},
+                                    {"actors", &m.actors},
+                                    {"boxes_2d", &m.boxes},
+                                    {"rig", &m.rig}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }

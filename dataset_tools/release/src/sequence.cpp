@@ -130,7 +130,8 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.city = to_json(s.city);
   const Rig rig = release_rig(config);
   meta.face_size = config.cube && rig.cameras.empty() ? config.face_size : 0;
-  meta.views = rig.cameras.empty() ? views_json(config.height, meta.face_size) : rig_views_json(rig);
+  meta.views =
+      rig.cameras.empty() ? views_json(config.height, meta.face_size) : rig_views_json(rig);
   if (!rig.cameras.empty()) meta.rig = to_json(rig);
   for (const auto& [view, mount] : view_mounts(rig, meta.face_size > 0)) {
     nlohmann::json poses = nlohmann::json::array();

@@ -78,8 +78,8 @@ void write_view(const fs::path& dir, const ReleaseLayout& layout, const View& vi
   }
 }
 
-void write_single_view(const fs::path& dir, const ReleaseLayout& layout, const View& view, int frame,
-                       int frames, const ViewImages& images) {
+void write_single_view(const fs::path& dir, const ReleaseLayout& layout, const View& view,
+                       int frame, int frames, const ViewImages& images) {
   write_view(dir, layout, view, frame, frames, images, [](auto image) { return image; });
 }
 
@@ -117,14 +117,13 @@ void write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& lay
 
 // Another rig: every camera ray cast and path traced directly from its own optical centre.
 void write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout, const Rig& rig,
-                     const Sequence& sequence, Renderer& renderer, const fs::path& dir,
-                     int frame) {
+                     const Sequence& sequence, Renderer& renderer, const fs::path& dir, int frame) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   for (const RigCamera& camera : rig.cameras) {
     const TruthRequest request = at_camera(plan.request, camera);
     GroundTruth truth = renderer.ground_truth(camera.projection, request);
-    const Image<float> color = release_color(config, sequence, renderer, camera.projection,
-                                             request.pair, frame, truth);
+    const Image<float> color =
+        release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
     write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames,
                       view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps));
   }
@@ -135,11 +134,10 @@ void write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout, c
 nlohmann::json boxes_json(const fs::path& dir, const ReleaseLayout& layout, int frames) {
   nlohmann::json boxes = nlohmann::json::object();
   for (const View& view : layout.views()) {
-    const bool panorama =
-        view.is_erp() || std::any_of(layout.cameras.begin(), layout.cameras.end(),
-                                     [&](const LayoutCamera& c) {
-                                       return c.name == view.camera && c.panorama;
-                                     });
+    const bool panorama = view.is_erp() || std::any_of(layout.cameras.begin(), layout.cameras.end(),
+                                                       [&](const LayoutCamera& c) {
+                                                         return c.name == view.camera && c.panorama;
+                                                       });
     nlohmann::json per_frame = nlohmann::json::array();
     for (int f = 0; f < frames; ++f) {
       const Image<std::uint16_t> ids =

@@ -29,8 +29,8 @@ class DoubleSphere : public Lens {
   int width() const override { return width_; }
   int height() const override { return height_; }
   nlohmann::json parameters() const override {
-    return {{"width", width_}, {"height", height_},   {"K", k_.matrix()},
-            {"xi", xi_},       {"alpha", alpha_},     {"max_angle_degrees", max_angle_ / kDegree}};
+    return {{"width", width_}, {"height", height_}, {"K", k_.matrix()},
+            {"xi", xi_},       {"alpha", alpha_},   {"max_angle_degrees", max_angle_ / kDegree}};
   }
 
   std::optional<Vec2> project(const Vec3& d) const override {

@@ -22,7 +22,9 @@ class DualFisheye : public Lens {
   int width() const override { return width_; }
   int height() const override { return height_; }
   nlohmann::json parameters() const override {
-    return {{"width", width_}, {"height", height_}, {"f", f_},
+    return {{"width", width_},
+            {"height", height_},
+            {"f", f_},
             {"max_angle_degrees", max_angle_ / kDegree}};
   }
 

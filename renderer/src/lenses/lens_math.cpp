@@ -39,8 +39,9 @@ std::vector<double> numbers(const nlohmann::json& p, const char* key, std::size_
 }
 
 Intrinsics intrinsics(const nlohmann::json& p) {
-  const std::string what = "lens parameter \"K\" must be 3 rows of 3 finite numbers "
-                           "[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]";
+  const std::string what =
+      "lens parameter \"K\" must be 3 rows of 3 finite numbers "
+      "[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]";
   require(p.is_object() && p.contains("K") && p.at("K").is_array() && p.at("K").size() == 3, what);
   std::vector<std::vector<double>> rows;
   for (const nlohmann::json& row : p.at("K")) rows.push_back(numbers({{"K", row}}, "K", 3));
@@ -99,9 +100,9 @@ std::optional<Vec3> RadialLens::ray(Vec2 pixel) const {
   const double rho = m.norm();
   if (rho > radius(max_angle_)) return std::nullopt;  // outside the image circle
   if (rho == 0) return Vec3::UnitZ();
-  const double theta = solve_increasing([this](double t) { return radius(t); },
-                                        [this](double t) { return radius_slope(t); }, rho, 0,
-                                        max_angle_);
+  const double theta =
+      solve_increasing([this](double t) { return radius(t); },
+                       [this](double t) { return radius_slope(t); }, rho, 0, max_angle_);
   const double s = std::sin(theta) / rho;
   return Vec3(s * m.x(), s * m.y(), std::cos(theta));
 }

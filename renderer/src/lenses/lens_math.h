@@ -37,8 +37,7 @@ Intrinsics intrinsics(const nlohmann::json& p);  // from "K": rows of 3, no skew
 // The x in [lo, hi] with f(x) = y, for f increasing there, `slope` its derivative: Newton steps,
 // bisection where a step would leave the bracket (Numerical Recipes' rtsafe), to 1e-15.
 double solve_increasing(const std::function<double(double)>& f,
-                        const std::function<double(double)>& slope, double y, double lo,
-                        double hi);
+                        const std::function<double(double)>& slope, double y, double lo, double hi);
 // The largest x in (0, limit] up to which f keeps increasing (sampled finely), for where a
 // polynomial model folds back.
 double increasing_until(const std::function<double(double)>& f, double limit);
@@ -53,7 +52,7 @@ class RadialLens : public Lens {
   std::optional<Vec2> project(const Vec3& direction) const override;
 
  protected:
-  virtual double radius(double theta) const = 0;  // g
+  virtual double radius(double theta) const = 0;        // g
   virtual double radius_slope(double theta) const = 0;  // dg / dtheta
   // Call once the subclass's coefficients are set: checks that g increases up to max_angle.
   void finish(int width, int height, double fx, double fy, double cx, double cy, double max_angle);

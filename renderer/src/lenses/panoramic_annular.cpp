@@ -109,13 +109,14 @@ std::shared_ptr<const Lens> panoramic_annular(int size, double band_degrees) {
   }
   const Eigen::Vector4d c = powers.colPivHouseholderQr().solve(target);
   const double s = size;
-  const nlohmann::json p = {{"width", size},
-                            {"height", size},
-                            {"centre", {s / 2 - 0.5, s / 2 - 0.5}},
-                            {"affine", {1, 0, 0}},
-                            {"polynomial", {c[0] * s, 0, c[1] / s, c[2] / (s * s), c[3] / (s * s * s)}},
-                            {"min_angle_degrees", low / kDegree},
-                            {"max_angle_degrees", high / kDegree}};
+  const nlohmann::json p = {
+      {"width", size},
+      {"height", size},
+      {"centre", {s / 2 - 0.5, s / 2 - 0.5}},
+      {"affine", {1, 0, 0}},
+      {"polynomial", {c[0] * s, 0, c[1] / s, c[2] / (s * s), c[3] / (s * s * s)}},
+      {"min_angle_degrees", low / kDegree},
+      {"max_angle_degrees", high / kDegree}};
   return make_panoramic_annular(p);
 }
 

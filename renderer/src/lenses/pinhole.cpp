@@ -1,9 +1,9 @@
 // A pinhole with any K and OpenCV's radial-tangential distortion (cv::projectPoints, D = k1, k2,
 // p1, p2, k3): x' = x (1 + k1 r^2 + k2 r^4 + k3 r^6) + 2 p1 x y + p2 (r^2 + 2 x^2), y' likewise,
 // pixel = K (x', y', 1), of the normalised point (x, y) = (X / Z, Y / Z).
-#include "lens_math.h"
-
 #include <Eigen/Dense>
+
+#include "lens_math.h"
 
 namespace flowscape::lens {
 namespace {

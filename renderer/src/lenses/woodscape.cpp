@@ -17,8 +17,12 @@ class WoodScape : public RadialLens {
   }
   std::string model() const override { return "woodscape"; }
   nlohmann::json parameters() const override {
-    return {{"width", width_},         {"height", height_},      {"k", k_},
-            {"cx_offset", cx_offset_}, {"cy_offset", cy_offset_}, {"aspect_ratio", fy_},
+    return {{"width", width_},
+            {"height", height_},
+            {"k", k_},
+            {"cx_offset", cx_offset_},
+            {"cy_offset", cy_offset_},
+            {"aspect_ratio", fy_},
             {"max_angle_degrees", max_angle_ / kDegree}};
   }
 

@@ -17,7 +17,7 @@ struct Projection {
   int width = 0, height = 0;
   Mat3 rotation = Mat3::Identity();  // pinhole, lens: camera (x right, y down, z forward) -> rig
   double focal = 0;                  // pinhole, pixels; principal point at the image centre
-  std::shared_ptr<const Lens> lens;  // Lens
+  std::shared_ptr<const Lens> lens{};  // Lens
 
   static Projection cube_face(Face face, int face_size);
   // Horizontal field of view in degrees, looking along the rig's x axis.

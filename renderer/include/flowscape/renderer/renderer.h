@@ -28,7 +28,7 @@ struct Moment {
 // asked, the 3-D motion of each pixel's surface point to the pair's next moment and its normals.
 struct TruthRequest {
   FramePair pair;
-  std::vector<Moment> more;
+  std::vector<Moment> more{};
   bool scene_flow = false, normal = false, shading_normal = false;
 };
 
@@ -43,11 +43,11 @@ struct GroundTruth {
   Image<std::uint16_t> instance;  // 0 for the static world and the sky
   Image<float> depth;             // distance along the ray, metres; +infinity for the sky
   Image<std::uint8_t> valid;      // 1 where the target is in front of the camera and visible then
-  std::vector<FlowTruth> more;    // to TruthRequest::more, in its order
+  std::vector<FlowTruth> more{};  // to TruthRequest::more, in its order
   // 3 channels each in the view's camera frame (Projection::camera_to_rig), NaN for the sky;
   // empty unless asked: the surface point's displacement to the pair's next moment (metres), the
   // unit geometric normal facing the camera, the unit shading normal (textures' bumps included).
-  Image<float> scene_flow, normal, shading_normal;
+  Image<float> scene_flow{}, normal{}, shading_normal{};
 };
 
 struct RenderOptions {

@@ -12,8 +12,8 @@
 namespace flowscape {
 
 struct RigCamera {
-  std::string name;       // its folder: cameras/<name>
-  Projection projection;  // the model and its image; rotation: camera -> rig
+  std::string name;              // its folder: cameras/<name>
+  Projection projection;         // the model and its image; rotation: camera -> rig
   Vec3 position = Vec3::Zero();  // of the optical centre in the rig frame, metres
   Pose mount() const;            // camera -> rig
 };

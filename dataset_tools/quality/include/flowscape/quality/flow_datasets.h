@@ -24,7 +24,7 @@ struct PairFiles {
   bool panorama = false;
   // optional: the backward flow of image2's frame to image1's and its mask (FlowScape releases
   // that hold it), for the forward-backward check
-  std::filesystem::path backward, backward_visible;
+  std::filesystem::path backward{}, backward_visible{};
 };
 
 struct FlowDataset {

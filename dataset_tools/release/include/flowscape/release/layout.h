@@ -1,7 +1,7 @@
 #pragma once
 // The files of a FlowScape release (design.md, "Release layout"), written down once. Every kind of
-// output a frame can have is one row of kOutputKinds, and a release's ReleaseLayout says which rows (and
-// flow gaps) it holds; the writer, resume, manifest, dataset card, splits, previews, merge,
+// output a frame can have is one row of kOutputKinds, and a release's ReleaseLayout says which rows
+// (and flow gaps) it holds; the writer, resume, manifest, dataset card, splits, previews, merge,
 // stitch_erp, gt_quality and the Python plugin (through the "layout" that manifest.json carries)
 // find files through it. A new output kind is a row here plus the code that produces its image in
 // release/src/writer.cpp (docs/architecture.md).
@@ -149,7 +149,8 @@ struct ReleaseLayout {
 
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.
   // Throws std::invalid_argument naming what is wrong.
-  static ReleaseLayout of(const std::vector<std::string>& picked, const std::vector<int>& gaps, bool cube);
+  static ReleaseLayout of(const std::vector<std::string>& picked, const std::vector<int>& gaps,
+                          bool cube);
   const ReleaseKind* find(std::string_view name) const;  // null when the release lacks it
   bool has(std::string_view name) const { return find(name) != nullptr; }
   // Every file of one frame, relative to the sequence folder.

@@ -1,0 +1,105 @@
+#include <catch2/catch.hpp>
+
+#include "flowscape/renderer/rig.h"
+
+using namespace flowscape;
+
+TEST_CASE("look turns the forward camera by yaw, pitch and roll") {
+  // camera axes as columns: x right, y down, z forward, in the rig (x forward, y left, z up)
+  const Mat3 ahead = look(0, 0, 0);
+  CHECK(ahead.col(2).isApprox(Vec3::UnitX()));
+  CHECK(ahead.col(0).isApprox(-Vec3::UnitY()));
+  CHECK(ahead.col(1).isApprox(-Vec3::UnitZ()));
+  CHECK(look(90, 0, 0).col(2).isApprox(Vec3::UnitY(), 1e-12));  // yaw left
+  CHECK(look(0, 90, 0).col(2).isApprox(Vec3::UnitZ(), 1e-12));  // pitch up
+  CHECK(look(0, -30, 0).col(2).isApprox(Vec3(std::cos(kPi / 6), 0, -0.5), 1e-12));
+  CHECK(look(0, 0, 90).col(0).isApprox(-Vec3::UnitZ(), 1e-12));  // roll: right turns down
+  for (const Mat3& m : {look(12, -34, 56), look(-170, 80, -5)}) {
+    CHECK((m.transpose() * m - Mat3::Identity()).norm() < 1e-12);
+    CHECK(m.determinant() == Approx(1));
+  }
+}
+
+TEST_CASE("a rig file reads back what it says and names what is wrong") {
+  const nlohmann::json file = {
+      {"name", "test rig"},
+      {"cameras",
+       {{{"name", "left_fisheye"},
+         {"model", "equidistant"},
+         {"parameters",
+          {{"width", 64},
+           {"height", 64},
+           {"K", {{18, 0, 31.5}, {0, 18, 31.5}, {0, 0, 1}}},
+           {"max_angle_degrees", 95}}},
+         {"mount", {{"position", {0.5, 1, -0.2}}, {"yaw_pitch_roll_degrees", {90, -10, 0}}}}},
+        {{"name", "pano"},
+         {"model", "equirectangular"},
+         {"parameters", {{"height", 16}}},
+         {"mount", {{"position", {0, 0, 1}}}}}}}};
+  const Rig rig = rig_from_json(file);
+  REQUIRE(rig.cameras.size() == 2);
+  CHECK(rig.cameras[0].position == Vec3(0.5, 1, -0.2));
+  CHECK(rig.cameras[0].projection.rotation.isApprox(look(90, -10, 0)));
+  CHECK(rig.cameras[1].projection.kind == Projection::Kind::Equirectangular);
+  CHECK(rig.cameras[1].projection.width == 32);
+  const Rig again = rig_from_json(to_json(rig));  // camera_to_rig rows instead of the angles
+  CHECK(to_json(again) == to_json(rig));
+  CHECK(again.cameras[0].mount().matrix().isApprox(rig.cameras[0].mount().matrix()));
+
+  const auto refused = [&](const std::function<void(nlohmann::json&)>& change,
+                           const std::string& message) {
+    nlohmann::json bad = file;
+    change(bad);
+    CHECK_THROWS_WITH(rig_from_json(bad), Catch::Contains(message));
+  };
+  refused([](nlohmann::json& j) { j["cameras"][1]["name"] = "left_fisheye"; },
+          "two cameras are named \"left_fisheye\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["name"] = "Left Fisheye"; },
+          "camera names are lower-case letters");
+  refused([](nlohmann::json& j) { j["cameras"][0]["model"] = "fisheye"; },
+          "camera \"left_fisheye\": unknown camera model \"fisheye\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["parameters"].erase("K"); },
+          "camera \"left_fisheye\": lens parameter \"K\"");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["mount"] = {{"camera_to_rig", {{1, 0, 0}, {0, 1, 0}, {0, 0, 2}}}};
+      },
+      "camera_to_rig must be a rotation");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][1]["mount"]["yaw_pitch_roll_degrees"] = {1, 0, 0};
+      },
+      "an equirectangular camera keeps the rig's axes");
+  refused([](nlohmann::json& j) { j["cameras"] = nlohmann::json::array(); },
+          "\"cameras\" must list 1 to 16 cameras");
+  CHECK_THROWS_WITH(rig_preset("gopro", 64), Catch::Contains("unknown rig \"gopro\""));
+}
+
+TEST_CASE("the presets hold the cameras and image sizes they say") {
+  CHECK(rig_preset("fisheye", 64).cameras.size() == 1);
+  CHECK(rig_preset("fisheye", 64).cameras[0].projection.lens->model() == "kannala_brandt");
+  const Rig wood = rig_preset("woodscape", 64);
+  REQUIRE(wood.cameras.size() == 4);
+  CHECK((wood.cameras[0].projection.width == 80 && wood.cameras[0].projection.height == 60));
+  CHECK(wood.cameras[1].projection.rotation.col(2).x() < -0.9);  // the rear one looks back
+  const Rig pal = rig_preset("pal", 64);
+  CHECK(pal.cameras[0].projection.rotation.col(2).isApprox(Vec3::UnitZ(), 1e-12));  // axis up
+  CHECK(pal.cameras[0].position.z() > 0);                                           // on a mast
+  const Rig dual = rig_preset("dual-fisheye", 32);
+  CHECK((dual.cameras[0].projection.width == 64 && dual.cameras[0].projection.height == 32));
+}
+
+TEST_CASE("a camera off the rig's origin moves with the rig's rotation (its lever arm)") {
+  const RigCamera camera{"side", Projection::of_lens(kannala_brandt_200(16), look(0, 0, 0)),
+                         Vec3(2, 0, 0)};
+  TruthRequest request;
+  request.pair.rig = Pose(Eigen::Translation3d(10, 0, 0));
+  request.pair.next_rig =
+      Pose(Eigen::Translation3d(10, 0, 0) * Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));
+  request.more = {{0.5, Pose(Eigen::AngleAxisd(kPi, Vec3::UnitZ()))}};
+  const TruthRequest moved = at_camera(request, camera);
+  CHECK(moved.pair.rig.translation().isApprox(Vec3(12, 0, 0)));
+  CHECK(moved.pair.next_rig.translation().isApprox(Vec3(10, 2, 0)));  // turned left: now at +y
+  CHECK(moved.more[0].rig.translation().isApprox(Vec3(-2, 0, 0)));
+  CHECK(moved.pair.next_rig.linear().isApprox(request.pair.next_rig.linear()));
+}
