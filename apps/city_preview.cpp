@@ -132,11 +132,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 4096))
       ->capture_default_str();
   app.add_option("--indirect-spp", o.color.indirect_spp,
-                 "of those, how many gather indirect light (more than --spp: all)")
-      ->check(CLI::Range(1, 4096))
+                 "of those, how many gather indirect light (more than --spp: all; 0: 4 when "
+                 "denoised, all when not)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  app.add_option("--denoise", o.color.denoise, "atrous (as a release) or none: the raw path tracer")
-      ->check(CLI::IsMember({"atrous", "none"}))
+  app.add_option("--denoise", o.color.denoise,
+                 "atrous (as a release), oidn (OIDN's U-Net) or none: the raw path tracer")
+      ->check(CLI::IsMember({"atrous", "oidn", "none"}))
       ->capture_default_str();
   app.add_option("--seed", o.seed, "sequence seed (city, traffic, weather variant, noise)");
   app.add_option("--vehicles", o.vehicles, "vehicles per map")->check(CLI::Range(0, 200));

@@ -84,9 +84,13 @@ int main(int argc, char** argv) {
   option("--face-size", "face_size", defaults.face_size, "cube face size in pixels");
   option("--spp", "spp", defaults.spp, "path-traced samples per pixel");
   option("--indirect-spp", "indirect_spp", defaults.indirect_spp,
-         "of those, how many gather indirect light (more than --spp: all)");
+         "of those, how many gather indirect light (more than --spp: all; 0: 4 when denoised, "
+         "all when not)");
   option("--denoise", "denoise", defaults.denoise,
-         "atrous: denoise the colour with its feature layers; none: the raw path tracer");
+         "atrous: the colour denoised with its feature layers; oidn: by OIDN's trained U-Net "
+         "(weights from scripts/install_deps.sh); none: the raw path tracer");
+  option("--denoise-model", "denoise_model", defaults.denoise_model,
+         "the U-Net of --denoise oidn: default or small (half the work)");
   app.add_option("--weather", weathers,
                  "comma-separated weather presets cycled over each map's sequences (default "
                  "sunny x5,cloud,fog,rain)");

@@ -1,11 +1,12 @@
 // Image quality per weather: for a fixed downtown frame (the default release's map 0, frame 30,
-// the weather preset varied by the sequence's seed) rendered by the direct ERP camera, the
-// non-sky PSNR of 8-bit sRGB colour against a raw reference of many samples, for the raw path
-// tracer at 16 spp (the baseline) and the release's default (ReleaseConfig: spp, indirect_spp,
-// a-trous), with the seconds per frame of each (colour and denoising; the ground truth, needed by
-// both, not counted). Targets: PSNR >= 40 dB in every weather, at most half the baseline's time.
-// Usage: bench_image_quality [ERP height = 128] [spp = release default] [indirect spp = release
-// default] [reference spp = 1024] [threads = all]
+// the weather preset varied by the sequence's seed) rendered by the direct ERP camera as a release
+// renders colour (release_color), the non-sky PSNR of 8-bit sRGB colour against a converged
+// reference (raw, every sample gathering indirect light), and the seconds per frame (colour and
+// denoising; the ground truth, needed by all, not counted). Rows: the raw path tracer at 16 spp
+// (the baseline), the a-trous default of before, OIDN's U-Net (default and small) at several
+// sample counts, and the release's default (ReleaseConfig). Targets at the default: PSNR >= 40 dB
+// in every weather, at most half the baseline's time.
+// Usage: bench_image_quality [ERP height = 128] [reference spp = 1024] [threads = all]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -14,10 +15,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/sequence.h"
-#include "flowscape/renderer/denoise.h"
 
 using namespace flowscape;
 
@@ -42,56 +43,75 @@ double psnr(const Image<float>& image, const Image<float>& reference, const Grou
   return 10 * std::log10(255.0 * 255.0 / std::max(squared / count, 1e-12));
 }
 
+struct Variant {
+  std::string name;
+  ReleaseConfig config;
+};
+
+Variant variant(const std::string& name, int spp, const std::string& denoise,
+                const std::string& model = "default", int indirect = 0) {
+  Variant v{name, ReleaseConfig{}};
+  v.config.spp = spp, v.config.denoise = denoise, v.config.denoise_model = model;
+  v.config.indirect_spp = indirect;
+  return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const ReleaseConfig config;
+  const ReleaseConfig defaults;
   const int height = argc > 1 ? std::atoi(argv[1]) : 128;
-  const int spp = argc > 2 ? std::atoi(argv[2]) : config.spp;
-  const int indirect_spp = argc > 3 ? std::atoi(argv[3]) : config.indirect_spp;
-  const int reference_spp = argc > 4 ? std::atoi(argv[4]) : 1024;
+  const int reference_spp = argc > 2 ? std::atoi(argv[2]) : 1024;
   tbb::global_control limit(
       tbb::global_control::max_allowed_parallelism,
-      argc > 5 ? std::atoi(argv[5]) : tbb::this_task_arena::max_concurrency());
-  const SequencePlan plan = plan_sequences(config).front();
+      argc > 3 ? std::atoi(argv[3]) : tbb::this_task_arena::max_concurrency());
+  std::vector<Variant> variants{variant("raw 16 spp (baseline)", 16, "none"),
+                                variant("a-trous 8 spp (4 indirect)", 8, "atrous", "default", 4)};
+  for (int spp : {1, 2, 4, 8})
+    for (const char* model : {"default", "small"})
+      variants.push_back(variant("oidn " + std::string(model) + " " + std::to_string(spp) + " spp",
+                                 spp, "oidn", model));
+  variants.push_back({"release default", defaults});
+  const SequencePlan plan = plan_sequences(defaults).front();
   const int frame = 30;
-  std::printf("bench_image_quality: downtown frame %d, %d x %d ERP, reference %d spp raw\n", frame,
-              height, 2 * height, reference_spp);
-  std::printf("  %-7s %18s %18s %12s %12s %7s\n", "weather", "PSNR raw 16 spp", "PSNR default",
-              "s raw 16", "s default", "ratio");
-  double worst = 1e9, raw_total = 0, default_total = 0;
+  std::printf(
+      "bench_image_quality: downtown frame %d, %d x %d ERP, reference %d spp raw (every "
+      "sample indirect)\n",
+      frame, height, 2 * height, reference_spp);
+  std::map<std::string, double> worst, seconds;
+  std::printf("  %-30s %8s %8s %8s %8s %9s\n", "", "sunny", "cloud", "fog", "rain", "s/frame");
+  std::vector<std::vector<double>> table(variants.size());
   for (const char* weather : {"sunny", "cloud", "fog", "rain"}) {
-    SequenceSpec spec = sequence_spec(config, plan);
+    SequenceSpec spec = sequence_spec(defaults, plan);
     spec.weather = weather;
     const Sequence sequence = make_sequence(spec);
     Renderer renderer(sequence.city.scene);
     const FramePair pair = sequence.frame_pair(frame);
     const Projection erp = Projection::equirectangular(height);
     const GroundTruth truth = renderer.ground_truth(erp, pair);
-    const std::uint64_t seed = sequence.color_seed(frame);
-    const Image<float> reference =
-        renderer.color(erp, pair, {reference_spp, config.max_bounces, seed + 1});
-    auto start = std::chrono::steady_clock::now();
-    const Image<float> raw = renderer.color(erp, pair, {16, config.max_bounces, seed});
-    const double raw_seconds = seconds_since(start);
-    start = std::chrono::steady_clock::now();
-    RenderOptions options{spp, config.max_bounces, seed};
-    options.indirect_samples = std::min(indirect_spp, spp);
-    const ColorLayers layers = renderer.color_layers(erp, pair, options);
-    const Image<float> denoised =
-        denoise(layers, {&erp, truth.depth.view(), truth.instance.view()});
-    const double default_seconds = seconds_since(start);
-    const double raw_psnr = psnr(raw, reference, truth),
-                 default_psnr = psnr(denoised, reference, truth);
-    worst = std::min(worst, default_psnr);
-    raw_total += raw_seconds, default_total += default_seconds;
-    std::printf("  %-7s %15.1f dB %15.1f dB %12.3f %12.3f %6.2fx\n", weather, raw_psnr,
-                default_psnr, raw_seconds, default_seconds, default_seconds / raw_seconds);
-    std::fflush(stdout);
+    const Image<float> reference = renderer.color(
+        erp, pair, {reference_spp, defaults.max_bounces, sequence.color_seed(frame) + 1});
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      const Image<float> color =
+          release_color(variants[k].config, sequence, renderer, erp, frame, truth);
+      seconds[variants[k].name] += seconds_since(start) / 4;
+      table[k].push_back(psnr(color, reference, truth));
+    }
   }
+  const double baseline = seconds[variants[0].name];
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    std::printf("  %-30s", variants[k].name.c_str());
+    for (double p : table[k]) std::printf(" %5.1f dB", p);
+    std::printf(" %7.3f s (%.2fx)\n", seconds[variants[k].name],
+                seconds[variants[k].name] / baseline);
+  }
+  const std::vector<double>& d = table.back();
   std::printf(
-      "  default: %d spp (%d indirect) + a-trous; worst PSNR %.1f dB (target >= 40 dB), "
-      "time %.2fx the raw 16 spp frames (target <= 0.5x)\n",
-      spp, std::min(indirect_spp, spp), worst, default_total / raw_total);
+      "  release default (%d spp, %d indirect, %s %s): worst %.1f dB (target >= 40 dB), "
+      "%.2fx the baseline's time (target <= 0.5x)\n",
+      defaults.spp, indirect_samples(defaults), defaults.denoise.c_str(),
+      defaults.denoise == "oidn" ? defaults.denoise_model.c_str() : "",
+      *std::min_element(d.begin(), d.end()), seconds["release default"] / baseline);
   return 0;
 }

@@ -42,11 +42,11 @@ int main(int argc, char** argv) {
               frames, threads, config.height, 2 * config.height, config.face_size);
   const double release = seconds_per_frame(config, out);
   ReleaseConfig raw = config;
-  raw.spp = raw.indirect_spp = 16, raw.denoise = "none";
+  raw.spp = raw.indirect_spp = 16, raw.denoise = "none";  // every sample indirect
   const double baseline = seconds_per_frame(raw, out);
   const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
   std::printf("  default: %d spp (%d indirect), a-trous   %6.2f s/frame  full release %5.2f h\n",
-              config.spp, config.indirect_spp, release, hours(release));
+              config.spp, indirect_samples(config), release, hours(release));
   std::printf("  baseline: 16 spp raw                     %6.2f s/frame  full release %5.2f h\n",
               baseline, hours(baseline));
   std::printf("  %d frames: %.2f h, %.2fx the baseline (target <= 2.7 h on 2 cores)\n", full_frames,

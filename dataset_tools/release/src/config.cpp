@@ -1,5 +1,6 @@
 #include "flowscape/release/config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <limits>
 #include <stdexcept>
@@ -26,7 +27,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
   visit("weathers", c.weathers);
-  visit("denoise", c.denoise);
+  visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("cube", c.cube), visit("models", c.models);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
@@ -57,9 +58,13 @@ void validate(const ReleaseConfig& c) {
   require(c.height >= 8 && c.height <= 8192, "resolution (ERP height) must be in 8..8192");
   require(c.face_size >= 4 && c.face_size <= 8192, "face_size must be in 4..8192");
   require(c.spp >= 1 && c.spp <= 65536, "spp must be in 1..65536");
-  require(c.indirect_spp >= 1 && c.indirect_spp <= 65536, "indirect_spp must be in 1..65536");
+  require(c.indirect_spp >= 0 && c.indirect_spp <= 65536,
+          "indirect_spp must be in 0..65536 (0: as the denoiser wants)");
   require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
-  require(c.denoise == "atrous" || c.denoise == "none", "denoise must be atrous or none");
+  require(c.denoise == "atrous" || c.denoise == "oidn" || c.denoise == "none",
+          "denoise must be atrous, oidn or none");
+  require(c.denoise_model == "default" || c.denoise_model == "small",
+          "denoise_model must be default or small");
   require(!c.weathers.empty(), "weathers must not be empty");
   for (const std::string& w : c.weathers) weather_preset(w);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
@@ -80,6 +85,11 @@ void validate(const ReleaseConfig& c) {
   require(c.shards >= 1 && c.shard >= 0 && c.shard < c.shards, "shard K/N needs 0 <= K < N (got " +
                                                                    std::to_string(c.shard) + "/" +
                                                                    std::to_string(c.shards) + ")");
+}
+
+int indirect_samples(const ReleaseConfig& c) {
+  if (c.indirect_spp > 0) return std::min(c.indirect_spp, c.spp);
+  return c.denoise == "none" ? c.spp : std::min(kDenoisedIndirectSpp, c.spp);
 }
 
 Rig release_rig(const ReleaseConfig& c) {

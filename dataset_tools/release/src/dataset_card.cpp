@@ -69,10 +69,13 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
     md << "- cube: six 90-degree faces (front right back left up down), " << c.face_size << " x "
        << c.face_size << ", focal " << c.face_size / 2.0
        << " px; the ERP colour is stitched from them\n";
-  md << "- colour path traced with " << c.spp << " samples per pixel ("
-     << std::min(c.indirect_spp, c.spp) << " of them gathering indirect light), "
-     << (c.denoise == "none" ? "not denoised"
-                             : "denoised (a-trous, guided by albedo, normal, depth, instance)")
+  md << "- colour path traced with " << c.spp << " samples per pixel (" << indirect_samples(c)
+     << " of them gathering indirect light), "
+     << (c.denoise == "none"   ? std::string("not denoised")
+         : c.denoise == "oidn" ? "denoised by OIDN's trained U-Net (" + c.denoise_model +
+                                     " model, HDR colour + albedo + normal; Apache-2.0 weights)"
+                               : std::string("denoised (a-trous, guided by albedo, normal, depth, "
+                                             "instance)"))
      << "\n\n## Output kinds\n\nEach kind is a folder of every view (the ERP"
      << (c.cube ? " and each face" : "")
      << "); bytes per frame are the mean over the release, all views together. The six kinds "

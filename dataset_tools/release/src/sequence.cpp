@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include "flowscape/core/random.h"
 #include "flowscape/renderer/denoise.h"
+#include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/scenes/actors.h"
 
 namespace flowscape {
@@ -38,8 +42,24 @@ std::uint64_t Sequence::color_seed(int frame) const { return derived_seed(spec.s
 
 RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) const {
   RenderOptions options{config.spp, config.max_bounces, color_seed(frame)};
-  options.indirect_samples = std::min(config.indirect_spp, config.spp);
+  options.indirect_samples = indirect_samples(config);
   return options;
+}
+
+const UNet& release_unet(const ReleaseConfig& config) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<const UNet>> unets;  // by model size, loaded once
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& unet = unets[config.denoise_model];
+  if (!unet)
+    unet = std::make_unique<const UNet>(read_unet_weights(oidn_weights_file(config.denoise_model)));
+  return *unet;
+}
+
+Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube) {
+  if (config.denoise == "none") return raw_color(cube.color);
+  if (config.denoise == "oidn") return neural_denoise_cube(release_unet(config), cube);
+  return denoise_cube(cube);
 }
 
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
@@ -55,6 +75,12 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
   const ColorLayers layers =
       renderer.color_layers(camera, pair, sequence.color_options(config, frame));
   if (config.denoise == "none") return raw_color(layers);
+  if (config.denoise == "oidn") {
+    const NeuralFeatures f = neural_features(layers);
+    return neural_denoise(release_unet(config), {f.color.view(), f.albedo.view(), f.normal.view(),
+                                                 autoexposure(f.color.view()),
+                                                 camera.kind == Projection::Kind::Equirectangular});
+  }
   return denoise(layers, {&camera, truth.depth.view(), truth.instance.view()});
 }
 

@@ -103,8 +103,7 @@ void write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& lay
   if (map) {
     const RenderOptions options = sequence.color_options(config, frame);
     CubeFrame cube = render_cube(renderer, config.face_size, plan.request, &options);
-    const Image<float> color =
-        config.denoise == "none" ? raw_color(cube.color) : denoise_cube(cube);
+    const Image<float> color = denoised_cube_color(config, cube);
     erp_color = resample_bilinear(map->sampling, color);
     write_cube(dir, layout, frame, config.frames,
                view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps));

@@ -20,8 +20,12 @@ struct ReleaseConfig {
   // Samples per pixel, and how many of them (at most spp) go on from the first surface to gather
   // indirect light; chosen by bench_image_quality: denoised, as clean as 16 raw samples in half
   // the time.
-  int spp = 8, indirect_spp = 4, max_bounces = 4;
-  std::string denoise = "atrous";  // the colour's denoiser (renderer/denoise.h), or "none": raw
+  // indirect_spp 0: chosen by the denoiser (kDenoisedIndirectSpp when denoised, every sample
+  // when not: a converged reference, --spp 1024 --denoise none, gathers on every sample).
+  int spp = 8, indirect_spp = 0, max_bounces = 4;
+  // The colour's denoiser: "atrous" (renderer/denoise.h), "oidn" (OIDN's U-Net,
+  // renderer/neural_denoise.h, of size denoise_model: default or small), or "none": raw.
+  std::string denoise = "atrous", denoise_model = "default";
   // Weather presets, cycled over the sequences of a map (FlowScape: 5 sunny, cloud, fog, rain).
   std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
                                     "sunny", "cloud", "fog",   "rain"};
@@ -44,6 +48,9 @@ struct ReleaseConfig {
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
+inline constexpr int kDenoisedIndirectSpp = 4;
+// How many of a pixel's samples gather indirect light (see ReleaseConfig::indirect_spp).
+int indirect_samples(const ReleaseConfig& config);
 // The kinds and views a release made with `config` holds (its outputs, flow gaps, rig, faces).
 ReleaseLayout release_layout(const ReleaseConfig& config);
 // The release's rig (renderer/rig.h): none of its cameras for flowscape; a rig file's errors

@@ -7,6 +7,7 @@
 
 #include "flowscape/release/config.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
@@ -42,6 +43,11 @@ struct Sequence {
 // A Renderer keeps a reference to sequence.city.scene: do not move the Sequence while one lives.
 Sequence make_sequence(const SequenceSpec& spec);
 
+// The U-Net of the release's denoise_model, loaded once per process (a FileError naming the
+// weights file when they are missing or damaged).
+const UNet& release_unet(const ReleaseConfig& config);
+// The colour of a cube frame's faces as the release's denoiser leaves them (stacked).
+Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube);
 // The colour of one camera's view of a frame as a release renders it without cube faces: path
 // traced with color_options and denoised with the view's ground truth (unless config.denoise is
 // "none").
