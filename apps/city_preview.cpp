@@ -52,8 +52,8 @@ FramePair plan_view(const City& city, double time) {
 // One row of the plan sheet: colour and semantics of map `map` seen from above.
 std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence(
-      {map, "sunny", o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
+  const Sequence sequence = make_sequence({map, "sunny", o.seed, o.vehicles, o.pedestrians,
+                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
   Renderer renderer(sequence.city.scene);
   const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
   const Projection camera = Projection::pinhole(o.height, o.height, 40);
@@ -66,8 +66,8 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
 // nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence(
-      {map, weather, o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
+  const Sequence sequence = make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians,
+                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
@@ -100,8 +100,8 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     return rows;
   }
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence(
-      {map, "sunny", o.seed, o.vehicles, o.pedestrians, o.ego_start, frame + 2, o.models});
+  const Sequence sequence = make_sequence({map, "sunny", o.seed, o.vehicles, o.pedestrians,
+                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
   Renderer renderer(sequence.city.scene);
   std::vector<std::vector<Image<std::uint8_t>>> rows;
   for (const RigCamera& camera : rig.cameras) {

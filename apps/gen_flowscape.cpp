@@ -13,6 +13,8 @@
 #include "cli.h"
 #include "flowscape/core/files.h"
 #include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/release/statistics.h"
 #include "flowscape/release/writer.h"
 
 using namespace flowscape;
@@ -96,6 +98,12 @@ int main(int argc, char** argv) {
                  "sunny x5,cloud,fog,rain)");
   option("--vehicles", "vehicles", defaults.vehicles, "vehicles per map");
   option("--pedestrians", "pedestrians", defaults.pedestrians, "pedestrians per map");
+  option("--turn-share", "turn_share", defaults.turn_share,
+         "share of sequences whose ego turns at a junction within its frames (0-1; the others "
+         "drive on, their lane ahead kept clear at spawn)");
+  option("--ego-routes", "ego_routes", defaults.ego_routes,
+         "mix: --turn-share of the sequences turn, the others drive; free: every ego drives as "
+         "traffic lets it from where its seed starts it (releases of flowscape 0.8 and before)");
   option("--seed", "seed", defaults.seed, "release seed")
       ->check(CLI::Validator(
           [](const std::string& text) {
@@ -164,6 +172,11 @@ int main(int argc, char** argv) {
     const ReleaseWritten written = write_release(c, out, force);
     std::printf("%s: %zu sequences, %zu frames, %zu files\n", written.manifest.c_str(),
                 written.sequences, written.frames, written.files);
+    if (c.shards == 1)
+      std::fputs(
+          statistics_summary(read_json(written.manifest).value("statistics", nlohmann::json()))
+              .c_str(),
+          stdout);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(diagnostics(), "gen_flowscape: error: %s\n", e.what());

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       "layout is recognised from the folder."};
   std::string root, images, flows, json, csv, error_images;
   bool panorama = false, quiet = false;
+  int sample = 0;
   app.add_option("dataset", root,
                  "dataset folder (FlowScape, PanoFlow tree, Sintel, KITTI, FlyingChairs)");
   app.add_option("--images", images,
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
   app.add_option("--flows", flows, "generic layout: flow files, e.g. 'flow/*.flo'");
   app.add_flag("--panorama", panorama,
                "generic layout: ERP images, targets wrap around horizontally");
+  app.add_option("--sample", sample,
+                 "score only N pairs per weather (category), spread evenly over its pairs")
+      ->check(CLI::Range(1, 1 << 30));
   app.add_option("--json", json, "also write the rows as JSON here");
   app.add_option("--csv", csv, "also write the rows as CSV here");
   app.add_option("--error-images", error_images, "write |I2(x + V) - I1| per pair as PNGs here");
@@ -34,8 +38,9 @@ int main(int argc, char** argv) {
   try {
     if (root.empty() == images.empty() || images.empty() != flows.empty())
       throw std::invalid_argument("give a dataset folder, or --images and --flows");
-    const FlowDataset dataset =
+    FlowDataset dataset =
         root.empty() ? glob_flow_dataset(images, flows, panorama) : find_flow_dataset(root);
+    if (sample > 0) dataset = sample_pairs(dataset, sample);
     const QualityReport report = evaluate_quality(dataset, {error_images, !quiet});
     std::fputs(report_table(report).c_str(), stdout);
     if (!json.empty()) write_text(json, report_json(report).dump(1) + "\n");

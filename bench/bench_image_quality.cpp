@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
   std::vector<std::vector<double>> table(variants.size());
   for (const char* weather : {"sunny", "cloud", "fog", "rain"}) {
     SequenceSpec spec = sequence_spec(defaults, plan);
-    spec.weather = weather;
+    spec.weather = weather, spec.ego_route = EgoRoute::Free;  // the frame its figures were of
     const Sequence sequence = make_sequence(spec);
     Renderer renderer(sequence.city.scene);
     const FramePair pair = sequence.frame_pair(frame);

@@ -2,8 +2,12 @@
 // (and the ego) at 30 Hz on every map: the largest change of yaw rate from one frame to the next,
 // the largest longitudinal acceleration and braking, the largest lateral acceleration, the mean
 // speed, how many vehicles share a junction, and how many lane changes they make. Issue 18 asks for
-// motion a vehicle model allows.
+// motion a vehicle model allows. Then the ego per route (city.h's EgoRoute: free, the old
+// placement, is the baseline): its mean speed, its largest yaw change from the first frame, the
+// share of cities whose ego turns by 45 degrees or more, the starts tried, make_city's time, and
+// the extremes of every vehicle's motion in those cities.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -85,6 +89,45 @@ void measure_junctions(const City& city, const std::vector<PoseTrack>& vehicles,
   }
 }
 
+double ego_turn_degrees(const PoseTrack& ego, int frames) {
+  double turned = 0;
+  for (int f = 1; f < frames; ++f)
+    turned =
+        std::max(turned, std::abs(std::remainder(yaw(ego(f * kFrame)) - yaw(ego(0)), 2 * kPi)));
+  return turned * 180 / kPi;
+}
+
+void ego_routes(int seeds, int frames) {
+  std::printf("\n%-11s %-6s %9s %9s %8s %7s %9s %9s %7s %7s %7s\n", "map", "route", "speed m/s",
+              "turn deg", "turn>=45", "tries", "s/city", "all dw", "accel", "brake", "lateral");
+  for (int map = 0; map < kMapCount; ++map)
+    for (EgoRoute route : {EgoRoute::Free, EgoRoute::Drive, EgoRoute::Turn}) {
+      double speed = 0, turn = 0, seconds = 0, ego_change = 0;
+      int turned = 0, tries = 0;
+      Extremes e;
+      for (int seed = 0; seed < seeds; ++seed) {
+        CityConfig config;
+        config.map = map, config.seed = std::uint64_t(seed), config.vehicles = 120;
+        config.pedestrians = 80, config.duration = (frames + 1) * kFrame;
+        config.ego_start = (11 * map + 37 * seed) % 100, config.ego_route = route;
+        const auto start = std::chrono::steady_clock::now();
+        const City city = make_city(config);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        speed += city.ego_distance((frames - 1) * kFrame) / ((frames - 1) * kFrame);
+        const double degrees = ego_turn_degrees(city.ego, frames);
+        turn += degrees, turned += degrees >= 45, tries += city.ego_tries;
+        measure_track(city.ego, frames, e, true, &ego_change);
+        for (std::size_t k = 0; k < city.actors.size(); ++k)
+          if (city.actors[k].kind != ActorKind::Pedestrian)
+            measure_track(city.scene.actors[k].pose, frames, e, false, &ego_change);
+      }
+      std::printf("%-11s %-6s %9.2f %9.1f %7.0f%% %7.1f %9.3f %9.3f %7.2f %7.2f %7.2f\n",
+                  map_name(map).c_str(), route_name(route).c_str(), speed / seeds, turn / seeds,
+                  100.0 * turned / seeds, double(tries) / seeds, seconds / seeds, e.yaw_change,
+                  e.acceleration, e.braking, e.lateral);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -124,5 +167,6 @@ int main(int argc, char** argv) {
       "(model: acceleration <= 2.5, braking <= 3, lateral <= 3 m/s^2, yaw-rate change <= "
       "0.118 rad/s per frame; before it, 4 x 300: 0.4-23.6 rad/s per frame, braking "
       "8.9-22.8, lateral 28-235 m/s^2, one vehicle per junction)\n");
+  ego_routes(seeds, frames);
   return 0;
 }

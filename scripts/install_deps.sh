@@ -9,6 +9,7 @@ packages=(
   python3-dev python3-numpy python3-pytest python3-torch python3-pip python3-setuptools python3-venv
   python3-pil python3-openimageio
   libdnnl-dev ocl-icd-opencl-dev opencl-c-headers
+  chromium  # the explorer page's browser test
 )
 command -v npm >/dev/null || packages+=(npm)  # fetches OIDN's weights (below)
 missing=()

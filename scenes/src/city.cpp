@@ -17,7 +17,17 @@ namespace flowscape {
 namespace {
 
 constexpr int kStartPoints = 110, kMaxActors = 200;
+constexpr double kFrame = 1 / kFrameRate;
 const char* const kKindNames[] = {"car", "truck", "bus", "bike", "pedestrian"};
+
+// A start on `lane`, s metres along it, heading along the lane, on the ground.
+StartPoint start_at(const Layout& layout, int lane, double s) {
+  const PathPoint p = layout.lanes[lane].path.at(s);
+  const double yaw = std::atan2(p.direction.y(), p.direction.x());
+  const Eigen::Vector3d at(p.position.x(), p.position.y(), layout.height(p.position));
+  return {lane, s,
+          Pose(Eigen::Translation3d(at) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))};
+}
 
 std::vector<StartPoint> start_points(const Layout& layout) {
   constexpr double kEndMargin = 8;
@@ -29,15 +39,8 @@ std::vector<StartPoint> start_points(const Layout& layout) {
   double next = spacing / 2, passed = 0;
   for (int l = 0; l < int(layout.lanes.size()); ++l) {
     const double length = std::max(0.0, layout.lanes[l].path.length() - 2 * kEndMargin);
-    for (; next < passed + length && int(points.size()) < kStartPoints; next += spacing) {
-      const double s = kEndMargin + next - passed;
-      const PathPoint p = layout.lanes[l].path.at(s);
-      const double yaw = std::atan2(p.direction.y(), p.direction.x());
-      const Eigen::Vector3d at(p.position.x(), p.position.y(), layout.height(p.position));
-      points.push_back(
-          {l, s,
-           Pose(Eigen::Translation3d(at) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))});
-    }
+    for (; next < passed + length && int(points.size()) < kStartPoints; next += spacing)
+      points.push_back(start_at(layout, l, kEndMargin + next - passed));
     passed += length;
   }
   return points;
@@ -83,11 +86,23 @@ struct Spawned {
   std::vector<WalkerStart> walkers;
 };
 
+// Whether a vehicle `length` long at s on `lane` would stand within `clear` metres ahead of the ego
+// on its way: its lane, or the first metres of a lane leaving the junction it drives into.
+bool in_ego_way(const Layout& layout, const StartPoint& ego, double clear, int lane, double s,
+                double length) {
+  const Lane& ego_lane = layout.lanes[ego.lane];
+  if (lane == ego.lane) return s + length / 2 > ego.s && s - length / 2 < ego.s + clear;
+  const double left = clear - (ego_lane.path.length() - ego.s);
+  return layout.lanes[lane].from == ego_lane.to && s - length / 2 < left;
+}
+
 Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, const StartPoint& ego,
               const CityConfig& config, Random& random) {
   Spawned out;
   const KindSize car = kind_size(ActorKind::Car);
-  out.vehicles.push_back({car.length, car.width, ego.lane, ego.s, layout.lanes[ego.lane].speed});
+  out.vehicles.push_back({car.length, car.width, ego.lane, ego.s, layout.lanes[ego.lane].speed,
+                          config.ego_route == EgoRoute::Turn});
+  const double clear = config.ego_route == EgoRoute::Free ? 0 : kEgoClearAhead;
   const Eigen::Vector2d ego_spot = layout.lanes[ego.lane].path.at(ego.s).position;
   for (int n = 0; n < config.vehicles; ++n) {
     const ActorKind kind = vehicle_kind(layout.style, random);
@@ -100,7 +115,8 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
       if (length < size.length + 4) continue;
       const double s = random.uniform(size.length / 2 + 1, length - size.length / 2 - 1);
       if (!near_the_ego(layout.lanes[lane].path.at(s).position, ego_spot, 30, attempt, random) ||
-          !clear_of(out.vehicles, lane, s, size.length))
+          !clear_of(out.vehicles, lane, s, size.length) ||
+          (clear > 0 && in_ego_way(layout, ego, clear, lane, s, size.length)))
         continue;
       out.vehicles.push_back({size.length, size.width, lane, s, wish});
       out.vehicle_kinds.push_back(kind);
@@ -197,7 +213,76 @@ std::map<ActorKind, Mesh> user_models(const CityConfig& config, Scene& scene) {
   return models;
 }
 
+// The ego's start on its try k (EgoRoute).
+StartPoint ego_start_of_try(const Layout& layout, const std::vector<StartPoint>& points,
+                            const CityConfig& config, int k) {
+  const StartPoint& point = points.at(std::size_t((config.ego_start + 37 * k) % 100));
+  if (config.ego_route != EgoRoute::Turn) return point;
+  const Lane& lane = layout.lanes[point.lane];
+  Random random(derived_seed(config.seed, std::uint64_t(k), 0x65676f));  // "ego"
+  const double before_end = random.uniform(3, std::max(3.0, 0.3 * lane.speed * config.duration));
+  return start_at(layout, point.lane, std::max(3.0, lane.path.length() - before_end));
+}
+
+// How near a try's ego track comes to what its route asks by `until` seconds: 1 for driving at
+// kEgoSpeedShare of its lane's speed on average (less in proportion), plus, for Turn, 1 for
+// turning by kEgoTurnDegrees.
+double ego_score(const Track& track, double lane_speed, double until, EgoRoute route) {
+  const double speed = track.distance_at(until) / until;
+  double score = std::min(1.0, speed / (kEgoSpeedShare * lane_speed));
+  if (route != EgoRoute::Turn) return score;
+  const auto yaw = [](const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); };
+  double turned = 0;
+  for (double t = 0; t <= until; t += track.step)
+    turned = std::max(turned,
+                      std::abs(std::remainder(yaw(track.pose(t)) - yaw(track.pose(0)), 2 * kPi)));
+  return score + std::min(1.0, turned * 180 / kPi / kEgoTurnDegrees);
+}
+
+// The traffic of a city with its ego placed as its route asks (EgoRoute), and the random stream
+// as that spawn left it (the actors' looks draw from it next).
+struct PlacedTraffic {
+  StartPoint ego;
+  int tries = 0;  // starts tried
+  Random random{0};
+  Spawned spawned;
+  TrafficTracks tracks;
+};
+
+PlacedTraffic place_traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
+                            const std::vector<StartPoint>& points, const CityConfig& config) {
+  const int tries = config.ego_route == EgoRoute::Free ? 1 : kEgoTries;
+  const double full_score = config.ego_route == EgoRoute::Turn ? 2 : 1;
+  PlacedTraffic best;
+  double best_score = -1;
+  for (int k = 0; k < tries; ++k) {
+    PlacedTraffic now;
+    now.ego = ego_start_of_try(layout, points, config, k);
+    now.random = Random(config.seed * 0x9e3779b97f4a7c15ull + 17 + std::uint64_t(config.map));
+    now.spawned = spawn(layout, loops, now.ego, config, now.random);
+    now.tracks = simulate_traffic(layout, loops, now.spawned.vehicles, now.spawned.walkers,
+                                  config.duration, config.seed);
+    const double score =
+        ego_score(now.tracks.vehicles[0], layout.lanes[now.ego.lane].speed,
+                  std::max(kFrame, config.duration - 2 * kFrame), config.ego_route);
+    if (score > best_score) best = std::move(now), best_score = score;
+    best.tries = k + 1;
+    if (best_score >= full_score) break;
+  }
+  return best;
+}
+
 }  // namespace
+
+std::string route_name(EgoRoute route) {
+  return route == EgoRoute::Free ? "free" : route == EgoRoute::Drive ? "drive" : "turn";
+}
+
+EgoRoute route_from_name(const std::string& name) {
+  for (EgoRoute route : {EgoRoute::Free, EgoRoute::Drive, EgoRoute::Turn})
+    if (name == route_name(route)) return route;
+  throw std::invalid_argument("unknown ego route \"" + name + "\" (free, drive or turn)");
+}
 
 std::string map_name(int map) { return style_of(map).name; }
 
@@ -262,13 +347,13 @@ City make_city(const CityConfig& config) {
   city.start_points = start_points(*layout);
   city.area_at = [layout](const Eigen::Vector2d& p) { return layout->area(p); };
   city.ground_height = [layout](const Eigen::Vector2d& p) { return layout->height(p); };
-  Random random(config.seed * 0x9e3779b97f4a7c15ull + 17 + std::uint64_t(config.map));
   const std::vector<SidewalkLoop> loops = sidewalk_loops(*layout);
-  const Spawned spawned =
-      spawn(*layout, loops, city.start_points.at(config.ego_start), config, random);
-  const TrafficTracks tracks = simulate_traffic(*layout, loops, spawned.vehicles, spawned.walkers,
-                                                config.duration, config.seed);
-  const std::vector<Track>&vehicle_tracks = tracks.vehicles, &walker_tracks = tracks.walkers;
+  PlacedTraffic traffic = place_traffic(*layout, loops, city.start_points, config);
+  city.ego_spawn = traffic.ego, city.ego_tries = traffic.tries;
+  Random& random = traffic.random;
+  const Spawned& spawned = traffic.spawned;
+  const std::vector<Track>&vehicle_tracks = traffic.tracks.vehicles,
+        &walker_tracks = traffic.tracks.walkers;
   const auto ego = std::make_shared<const Track>(vehicle_tracks[0]);
   city.ego = [ego](double t) { return ego->pose(t); };
   city.ego_distance = [ego](double t) { return ego->distance_at(t); };
@@ -301,17 +386,18 @@ nlohmann::json to_json(const City& city) {
                       {"lane", a.lane},
                       {"s", a.s},
                       {"speed", a.speed}});
-  const StartPoint& ego = city.start_points.at(c.ego_start);
+  const StartPoint& ego = city.ego_spawn;
   return {{"map", c.map},
           {"map_name", map_name(c.map)},
           {"seed", c.seed},
           {"vehicles", c.vehicles},
           {"pedestrians", c.pedestrians},
           {"ego_start", c.ego_start},
+          {"ego_route", route_name(c.ego_route)},
           {"duration", c.duration},
           {"models", c.models},
           {"camera_height", city.mount.height},
-          {"ego", {{"lane", ego.lane}, {"s", ego.s}}},
+          {"ego", {{"lane", ego.lane}, {"s", ego.s}, {"tries", city.ego_tries}}},
           {"start_points", city.start_points.size()},
           {"actors", actors}};
 }
@@ -324,6 +410,7 @@ CityConfig config_from_json(const nlohmann::json& record) {
     c.vehicles = record.at("vehicles").get<int>();
     c.pedestrians = record.at("pedestrians").get<int>();
     c.ego_start = record.value("ego_start", 0);
+    c.ego_route = route_from_name(record.value("ego_route", "free"));
     c.duration = record.value("duration", 4.0);
     c.models = record.value("models", std::map<std::string, std::string>{});
   } catch (const nlohmann::json::exception& e) {

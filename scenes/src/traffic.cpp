@@ -122,6 +122,7 @@ struct Vehicle {
   const Connector* connector = nullptr;  // from lane to next_lane
   int held = -1;                         // the junction it may cross (or is leaving), or -1
   bool in_junction = false;
+  bool turn_next = false;  // its next junction's way must turn (VehicleStart::turn)
   double s = 0, speed = 0, travelled = 0;
   // How far its body reaches sideways from its connector: half its width plus the swing of its
   // ends in the tightest curve (chord offset L^2 k / 8).
@@ -173,7 +174,7 @@ class Traffic {
       Vehicle v;
       v.length = start.length, v.width = start.width;
       v.wish = std::min(start.speed, layout.lanes[start.lane].speed);
-      v.lane = start.lane, v.s = start.s;
+      v.lane = start.lane, v.s = start.s, v.turn_next = start.turn;
       choose_next(v);
       vehicles_.push_back(std::move(v));
     }
@@ -226,11 +227,13 @@ class Traffic {
     return p;
   }
 
-  // Where vehicle o is along `lane`: on it, or (negative) on its way into it across a junction.
+  // Where vehicle o is along `lane`: on it, or (negative) on its way into it across a junction,
+  // in it or holding it (so that nobody changes into `lane` just ahead of one about to enter).
   std::optional<double> position_on(const Vehicle& o, int lane) const {
     if (on_lane(o, lane)) return o.s;
-    if (o.in_junction && o.next_lane == lane) return o.s - o.connector->path.length();
-    return std::nullopt;
+    if (o.next_lane != lane || !cleared(o)) return std::nullopt;
+    const double to_way = o.in_junction ? -o.s : lane_length(o.lane) - o.s;
+    return -to_way - o.connector->path.length();
   }
 
   // The nearest vehicles ahead of and behind vehicle i's place on `lane` (or -1).
@@ -332,9 +335,14 @@ class Traffic {
       (out.path.at(0).direction.dot(in_direction) < -0.3 ? hairpins : roads).push_back(l);
     }
     if (roads.empty()) roads = hairpins;
+    const auto straight = [&](int l) {
+      return layout_.lanes[l].path.at(0).direction.dot(in_direction) > 0.5;
+    };
+    if (v.turn_next && !std::all_of(roads.begin(), roads.end(), straight))
+      roads.erase(std::remove_if(roads.begin(), roads.end(), straight), roads.end());
+    v.turn_next = false;
     std::vector<double> weights;
-    for (int l : roads)
-      weights.push_back(layout_.lanes[l].path.at(0).direction.dot(in_direction) > 0.5 ? 2 : 1);
+    for (int l : roads) weights.push_back(straight(l) ? 2 : 1);
     double pick = random_.uniform(0, std::accumulate(weights.begin(), weights.end(), 0.0));
     int road = roads.back();
     for (std::size_t k = 0; k < roads.size(); ++k)

@@ -24,8 +24,9 @@ struct Track {
 struct VehicleStart {
   double length, width;
   int lane;
-  double s;      // centre, metres along the lane
-  double speed;  // wish speed, m/s (capped by the lane's)
+  double s;           // centre, metres along the lane
+  double speed;       // wish speed, m/s (capped by the lane's)
+  bool turn = false;  // at the first junction it turns (left or right) where it can
 };
 
 struct WalkerStart {

@@ -5,7 +5,9 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/config.h"
+#include "flowscape/release/sequence.h"
 #include "flowscape/release/split.h"
+#include "flowscape/release/writer.h"
 #include "temp_dir.h"
 
 using namespace flowscape;
@@ -129,4 +131,38 @@ TEST_CASE("the rig is a preset or a rig file, named when it is neither") {
   const ReleaseConfig pal = release_config_from_json(nlohmann::json::parse(R"({"rig": "pal"})"));
   CHECK(release_layout(pal).cameras == std::vector<LayoutCamera>{{"pal", false}});
   CHECK(release_layout(ReleaseConfig{}).has_erp());
+}
+
+TEST_CASE("the sequence mix: every third turns, the others drive; free as before 0.9") {
+  ReleaseConfig config;
+  config.maps = 2, config.sequences_per_map = 4;
+  std::vector<EgoRoute> routes;
+  for (const SequencePlan& plan : plan_sequences(config))
+    routes.push_back(sequence_spec(config, plan).ego_route);
+  // numbers 2, 5: floor((n + 1) / 3) > floor(n / 3)
+  const EgoRoute D = EgoRoute::Drive, T = EgoRoute::Turn;
+  CHECK(routes == std::vector<EgoRoute>{D, D, T, D, D, T, D, D});
+  config.ego_routes = "free";
+  for (const SequencePlan& plan : plan_sequences(config)) {
+    CHECK_FALSE(plan.turns);
+    CHECK(sequence_spec(config, plan).ego_route == EgoRoute::Free);
+  }
+  CHECK_THROWS_WITH(release_config_from_json({{"ego_routes", "loop"}}),
+                    Catch::Contains("ego_routes must be mix or free"));
+  CHECK_THROWS_WITH(release_config_from_json({{"turn_share", 1.5}}),
+                    Catch::Contains("turn_share must be in 0..1"));
+}
+
+TEST_CASE("a release of flowscape 0.8 (no ego_routes in config.json) resumes as free") {
+  TempDir dir;
+  ReleaseConfig config;
+  config.maps = 1, config.sequences_per_map = 1, config.frames = 2;
+  config.ego_routes = "free";
+  nlohmann::json old = to_json(config);
+  old.erase("ego_routes"), old.erase("turn_share");
+  write_text(dir.path / "config.json", old.dump());
+  CHECK_NOTHROW(claim_release(config, dir.path, false));
+  config.ego_routes = "mix";
+  CHECK_THROWS_WITH(claim_release(config, dir.path, false),
+                    Catch::Contains("ego_routes: \"free\" recorded, \"mix\" now"));
 }

@@ -6,7 +6,7 @@
 using namespace flowscape;
 
 TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's poses then") {
-  const Sequence s = make_sequence({3, "fog", 77, 6, 4, 12, 10, {}});
+  const Sequence s = make_sequence({3, "fog", 77, 6, 4, 12, EgoRoute::Free, 10, {}});
   for (int f : {0, 4, 9}) {
     const FramePair pair = s.frame_pair(f);
     CHECK(pair.time == Approx(f / 30.0));
@@ -21,8 +21,8 @@ TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's
 }
 
 TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json records") {
-  const Sequence a = make_sequence({0, "fog", 1, 2, 2, 0, 3, {}}),
-                 b = make_sequence({0, "fog", 2, 2, 2, 0, 3, {}});
+  const Sequence a = make_sequence({0, "fog", 1, 2, 2, 0, EgoRoute::Free, 3, {}}),
+                 b = make_sequence({0, "fog", 2, 2, 2, 0, EgoRoute::Free, 3, {}});
   CHECK(to_json(a.weather) == to_json(randomized(weather_preset("fog"), 1)));
   CHECK(to_json(a.weather) != to_json(b.weather));
   CHECK(a.city.scene.environment.fog.density > 0);
@@ -103,4 +103,29 @@ TEST_CASE("a frame's truth request has a target per flow step of its layout") {
   CHECK((middle.request.scene_flow && middle.request.normal && !middle.request.shading_normal));
   CHECK(truth_plan(s, layout, 5, 6).steps == std::vector<int>{-1, -2});
   CHECK(truth_plan(s, layout, 0, 6).steps == std::vector<int>{2});
+}
+
+TEST_CASE("a release's sequence mix turns a quarter or more by 45 degrees at 6 m/s or more") {
+  // the plan of gen_flowscape --maps 8 --sequences-per-map 4 --frames 100 (issue 27's release)
+  ReleaseConfig config;
+  config.maps = 8, config.sequences_per_map = 4, config.frames = 100;
+  int turning = 0, planned_turns = 0, steps = 0;
+  double distance = 0;
+  for (const SequencePlan& plan : plan_sequences(config)) {
+    const Sequence s = make_sequence(sequence_spec(config, plan));
+    double yaw_change = 0;
+    for (int f = 0; f + 1 < config.frames; ++f) {
+      const Pose a = s.moment(f).rig, b = s.moment(f + 1).rig;
+      const Vec3 forward_a = a.linear().col(0), forward_b = b.linear().col(0);
+      yaw_change += std::remainder(
+          std::atan2(forward_b.y(), forward_b.x()) - std::atan2(forward_a.y(), forward_a.x()),
+          2 * kPi);
+      distance += (b.translation() - a.translation()).norm(), ++steps;
+    }
+    turning += std::abs(yaw_change) * 180 / kPi >= 45;
+    planned_turns += plan.turns;
+  }
+  CHECK(planned_turns == 10);  // floor(32 / 3)
+  CHECK(turning >= 32 / 4);
+  CHECK(distance / steps * kFrameRate >= 6);
 }

@@ -373,11 +373,13 @@ TEST_CASE("a map exported as glTF reads back with the same triangles and classes
 TEST_CASE("a scene record in JSON reproduces the scene and rejects bad values") {
   CityConfig config;
   config.map = 5, config.seed = 11, config.vehicles = 25, config.pedestrians = 15;
-  config.ego_start = 42;
+  config.ego_start = 42, config.ego_route = EgoRoute::Turn;
   const City city = make_city(config);
   const nlohmann::json record = nlohmann::json::parse(to_json(city).dump());
   CHECK(record["map_name"] == "waterfront");
   CHECK(record["actors"].size() == 40);
+  CHECK(record["ego_route"] == "turn");
+  CHECK(record["ego"]["tries"] == city.ego_tries);
   const City again = city_from_record(record);
   for (double t : {0.0, 1.7, 3.9}) {
     CHECK(again.ego(t).matrix() == city.ego(t).matrix());
@@ -397,6 +399,7 @@ TEST_CASE("a scene record in JSON reproduces the scene and rejects bad values") 
   bad("vehicles", 190, "at most 200");
   bad("ego_start", 100, "ego start 100");
   bad("duration", -2.0, "duration");
+  bad("ego_route", "loop", "unknown ego route \"loop\"");
   bad("seed", "x", "scene record");
 }
 
@@ -425,6 +428,33 @@ TEST_CASE("a rendered city frame shows its classes and the instances of its acto
   CHECK(instances.size() >= 3);
 }
 
+namespace {
+
+// Every vehicle of the city (and the ego) over 100 frames keeps the model's bounds (below),
+// measured from the poses at 30 Hz, with the slack of finite differences.
+void check_vehicle_model(const City& city) {
+  const auto ground = [](const Pose& p) { return Eigen::Vector2d(p.translation().head<2>()); };
+  std::vector<PoseTrack> vehicles{city.ego};
+  for (std::size_t k = 0; k < city.actors.size(); ++k)
+    if (city.actors[k].kind != ActorKind::Pedestrian) vehicles.push_back(city.scene.actors[k].pose);
+  for (const PoseTrack& track : vehicles)
+    for (int frame = 1; frame < 100; ++frame) {
+      const Pose a = track((frame - 1) * kFrame), b = track(frame * kFrame),
+                 c = track((frame + 1) * kFrame);
+      const double rate0 = std::remainder(yaw(b) - yaw(a), 2 * kPi) / kFrame;
+      const double rate1 = std::remainder(yaw(c) - yaw(b), 2 * kPi) / kFrame;
+      const double v0 = (ground(b) - ground(a)).norm() / kFrame;
+      const double v1 = (ground(c) - ground(b)).norm() / kFrame;
+      REQUIRE(std::abs(rate1 - rate0) < 0.118 * 1.05);
+      REQUIRE((v1 - v0) / kFrame < 2.5 * 1.02);
+      REQUIRE((v0 - v1) / kFrame < 3.0 * 1.02);
+      REQUIRE(std::abs(rate1) * v1 < 3.0 * 1.04);
+      if (v1 > 1) REQUIRE(std::abs(rate1) / v1 < 1.0 / 3);
+    }
+}
+
+}  // namespace
+
 TEST_CASE("vehicles drive as a vehicle model allows: bounded acceleration, braking, cornering") {
   // Paths have continuous curvature k (clothoid transitions of at least 2.5 m, no radius under
   // 3 m) and speeds a bounded acceleration a (2.5 m/s^2 up, 3 down, Gipps' braking rule), with
@@ -433,34 +463,26 @@ TEST_CASE("vehicles drive as a vehicle model allows: bounded acceleration, braki
   // ahead keeps v^2 <= 3 / K + 2 * 2 * T, so v^2 k' <= 3 / T + 4 K <= 3 / 2.5 + 4 / 3: in all
   // |dw/dt| <= 3.53 rad/s^2, 0.118 rad/s from one frame to the next. Before this model the yaw
   // rate changed by up to 3.4 rad/s per frame (polygonal arcs), then 1.76 (instant braking in
-  // curves, kinks onto the roundabouts' octagons); now at most 0.08 (bench_motion). Measured from
-  // the poses at 30 Hz, with the slack of finite differences.
-  const auto ground = [](const Pose& p) { return Eigen::Vector2d(p.translation().head<2>()); };
+  // curves, kinks onto the roundabouts' octagons); now at most 0.08 (bench_motion).
   for (int map = 0; map < kMapCount; ++map)
-    for (const std::uint64_t seed : {7, 2}) {
+    for (const auto& [seed, route] : {std::pair{7, EgoRoute::Free},
+                                      {2, EgoRoute::Free},
+                                      {7, EgoRoute::Drive},
+                                      {7, EgoRoute::Turn}}) {
       CityConfig config = busy(map);
-      config.seed = seed;
-      const City city = make_city(config);
-      INFO("map " << map_name(map) << ", seed " << seed);
-      std::vector<PoseTrack> vehicles{city.ego};
-      for (std::size_t k = 0; k < city.actors.size(); ++k)
-        if (city.actors[k].kind != ActorKind::Pedestrian)
-          vehicles.push_back(city.scene.actors[k].pose);
-      for (const PoseTrack& track : vehicles)
-        for (int frame = 1; frame < 100; ++frame) {
-          const Pose a = track((frame - 1) * kFrame), b = track(frame * kFrame),
-                     c = track((frame + 1) * kFrame);
-          const double rate0 = std::remainder(yaw(b) - yaw(a), 2 * kPi) / kFrame;
-          const double rate1 = std::remainder(yaw(c) - yaw(b), 2 * kPi) / kFrame;
-          const double v0 = (ground(b) - ground(a)).norm() / kFrame;
-          const double v1 = (ground(c) - ground(b)).norm() / kFrame;
-          REQUIRE(std::abs(rate1 - rate0) < 0.118 * 1.05);
-          REQUIRE((v1 - v0) / kFrame < 2.5 * 1.02);
-          REQUIRE((v0 - v1) / kFrame < 3.0 * 1.02);
-          REQUIRE(std::abs(rate1) * v1 < 3.0 * 1.04);
-          if (v1 > 1) REQUIRE(std::abs(rate1) / v1 < 1.0 / 3);
-        }
+      config.seed = std::uint64_t(seed), config.ego_route = route;
+      INFO("map " << map_name(map) << ", seed " << seed << ", ego route " << route_name(route));
+      check_vehicle_model(make_city(config));
     }
+}
+
+TEST_CASE("nobody changes lanes just ahead of a vehicle about to turn into that lane") {
+  // bench_motion's highway city of seed 8: a vehicle changed into a lane 2 m past the junction
+  // that another, holding the junction at 13 m/s, was about to turn into; it braked at 137 m/s^2
+  CityConfig config;
+  config.map = 2, config.seed = 8, config.vehicles = 120, config.pedestrians = 80;
+  config.duration = 101 * kFrame, config.ego_start = (11 * 2 + 37 * 8) % 100;
+  check_vehicle_model(make_city(config));
 }
 
 TEST_CASE("the camera rig sways with the distance driven and sits at a per-sequence height") {
@@ -490,4 +512,38 @@ TEST_CASE("the camera rig sways with the distance driven and sits at a per-seque
   }
   for (std::uint64_t seed = 0; seed < 8; ++seed) heights.insert(random_mount(seed).height);
   CHECK(heights.size() >= 8);  // every seed (every sequence of a release) its own mount
+}
+
+TEST_CASE("the ego's route: Turn turns it at a junction, Drive keeps its way clear at spawn") {
+  // 8 maps, one city each: a Turn ego heads 45 degrees or more off its start within 101 frames,
+  // driving at least half its lane's speed on average; a Drive ego has no vehicle starting on
+  // its lane within kEgoClearAhead metres ahead, and drives at least as fast as a Free one.
+  double free_speed = 0, drive_speed = 0;
+  for (int map = 0; map < kMapCount; ++map) {
+    CityConfig config = busy(map);
+    config.duration = 101 * kFrame;
+    const auto turned = [&](const City& city) {
+      double most = 0;
+      for (int f = 0; f <= 100; ++f)
+        most = std::max(
+            most, std::abs(std::remainder(yaw(city.ego(f * kFrame)) - yaw(city.ego(0)), 2 * kPi)));
+      return most * 180 / kPi;
+    };
+    const auto speed = [&](const City& city) {
+      return city.ego_distance(100 * kFrame) / (100 * kFrame);
+    };
+    INFO("map " << map_name(map));
+    config.ego_route = EgoRoute::Turn;
+    const City turning = make_city(config);
+    CHECK(turned(turning) >= kEgoTurnDegrees);
+    CHECK(turning.ego_tries <= kEgoTries);
+    config.ego_route = EgoRoute::Drive;
+    const City driving = make_city(config);
+    for (const ActorRecord& a : driving.actors)
+      if (a.kind != ActorKind::Pedestrian && a.lane == driving.ego_spawn.lane)
+        CHECK(!(a.s > driving.ego_spawn.s && a.s < driving.ego_spawn.s + kEgoClearAhead));
+    config.ego_route = EgoRoute::Free;
+    drive_speed += speed(driving), free_speed += speed(make_city(config));
+  }
+  CHECK(drive_speed > free_speed);
 }

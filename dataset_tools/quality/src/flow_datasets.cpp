@@ -3,6 +3,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <map>
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/layout.h"
@@ -244,6 +245,21 @@ FlowDataset glob_flow_dataset(const std::string& images, const std::string& flow
                        "all",
                        panorama});
   return d;
+}
+
+FlowDataset sample_pairs(const FlowDataset& dataset, int per_category) {
+  std::map<std::string, std::vector<std::size_t>> of_category;
+  for (std::size_t k = 0; k < dataset.pairs.size(); ++k)
+    of_category[dataset.pairs[k].category].push_back(k);
+  std::vector<std::size_t> taken;
+  for (const auto& [category, pairs] : of_category) {
+    const std::size_t n = pairs.size(), wanted = std::min(n, std::size_t(per_category));
+    for (std::size_t k = 0; k < wanted; ++k) taken.push_back(pairs[(2 * k + 1) * n / (2 * wanted)]);
+  }
+  std::sort(taken.begin(), taken.end());
+  FlowDataset sample{dataset.layout, {}};
+  for (std::size_t k : taken) sample.pairs.push_back(dataset.pairs[k]);
+  return sample;
 }
 
 }  // namespace flowscape

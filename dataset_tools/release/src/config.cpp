@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -29,6 +30,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("weathers", c.weathers);
   visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
+  visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
   visit("cube", c.cube), visit("models", c.models);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
 }
@@ -69,6 +71,8 @@ void validate(const ReleaseConfig& c) {
   for (const std::string& w : c.weathers) weather_preset(w);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");
+  require(c.turn_share >= 0 && c.turn_share <= 1, "turn_share must be in 0..1");
+  require(c.ego_routes == "mix" || c.ego_routes == "free", "ego_routes must be mix or free");
   for (const auto& [kind, path] : c.models) {
     kind_from_name(kind);
     if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");
@@ -229,10 +233,18 @@ std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
   for (int m = 0; m < c.maps; ++m)
     for (int s = 0; s < c.sequences_per_map; ++s) {
       const int number = int(plans.size());
+      const bool turns = c.ego_routes == "mix" && std::floor((number + 1) * c.turn_share) >
+                                                      std::floor(number * c.turn_share);
       plans.push_back({sequence_name(m, s), m, s, number, c.weathers[s % c.weathers.size()],
-                       derived_seed(c.seed, m, s)});
+                       derived_seed(c.seed, m, s), turns});
     }
   return plans;
+}
+
+std::vector<std::string> sequence_names(const ReleaseConfig& config) {
+  std::vector<std::string> names;
+  for (const SequencePlan& plan : plan_sequences(config)) names.push_back(plan.name);
+  return names;
 }
 
 bool in_shard(const SequencePlan& plan, const ReleaseConfig& c) {

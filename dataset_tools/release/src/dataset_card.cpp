@@ -12,6 +12,7 @@
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/preview.h"
+#include "flowscape/release/statistics.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/model_io.h"
 
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kCardFile = "README.md";
+constexpr const char* kStatisticsFigure = "statistics.svg";
 
 void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
   std::map<std::string, int> per_weather;
@@ -101,6 +103,49 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
   md << "| all | | " << with_unit(total) << " | |\n";
 }
 
+std::string percent(double share) {
+  std::ostringstream text;
+  text.precision(3);
+  text << 100 * share << " %";
+  return text.str();
+}
+
+void statistics_row(std::ostringstream& md, const std::string& name, const nlohmann::json& g) {
+  const nlohmann::json& flow = g.at("flow").at("percentiles");
+  std::ostringstream row;
+  row.precision(3);
+  row << "| " << name << " | " << g.at("sequences") << " | " << percent(g.at("turn_share")) << " | "
+      << g.at("ego_speed").at("mean").get<double>() << " | "
+      << g.at("yaw_rate_abs").value("p90", 0.0) << " | " << flow.at("p50").get<double>() << " | "
+      << flow.at("p90").get<double>() << " | " << flow.at("p99").get<double>() << " | "
+      << percent(g.at("actor_share")) << " | " << percent(g.at("valid_share")) << " |\n";
+  md << row.str();
+}
+
+// The release's statistics (statistics.h), from its sequences' meta.json.
+void statistics_section(std::ostringstream& md, const nlohmann::json& statistics) {
+  md << "\n## Statistics\n\n";
+  if (statistics.is_null()) {
+    md << "No sequence recorded statistics.\n";
+    return;
+  }
+  md << "Of the " << statistics.at("view").get<std::string>() << " view of every frame, as `"
+     << kManifestFile
+     << "` states them (`statistics`). Flow in pixels of a 1024-wide image, every pixel whose "
+        "flow is known (percentiles from eighth-octave histograms); a sequence turns when its "
+        "heading changes by "
+     << statistics.at("turn_degrees")
+     << " degrees or more; speed and yaw rate of the rig "
+        "between frames.\n\n![statistics]("
+     << kCardDir << "/" << kStatisticsFigure
+     << ")\n\n| group | sequences | turning | ego speed m/s (mean) | yaw rate deg/s (p90) | "
+        "flow p50 | flow p90 | flow p99 | actor pixels | valid pixels |\n| --- | --- | --- | --- "
+        "| --- | --- | --- | --- | --- | --- |\n";
+  for (const char* kind : {"maps", "weathers"})
+    for (const auto& [name, group] : statistics.at(kind).items()) statistics_row(md, name, group);
+  statistics_row(md, "all", statistics.at("all"));
+}
+
 void conventions_section(std::ostringstream& md) {
   md << "\n## Conventions\n\nAs `" << kManifestFile
      << "` states them for programs (`conventions`); each kind's `step` in its `layout` says which "
@@ -133,13 +178,14 @@ void layout_section(std::ostringstream& md, const ReleaseConfig& c) {
 }
 
 std::string card_text(const ReleaseConfig& c, const fs::path& out,
-                      const std::vector<std::string>& examples) {
+                      const std::vector<std::string>& examples, const nlohmann::json& statistics) {
   std::ostringstream md;
   md << "# FlowScape release\n\nSynthetic panoramic optical flow in procedural city maps, made by `"
      << kGeneratorVersion << "` (the FlowScape toolkit), after the FlowScape dataset of the "
      << "PanoFlow paper. Every file is listed with its sha256 in `" << kManifestFile << "`.\n\n";
   counts_section(md, c);
   sizes_section(md, c, out);
+  statistics_section(md, statistics);
   conventions_section(md);
   classes_section(md);
   layout_section(md, c);
@@ -183,11 +229,13 @@ void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
     write_image(out / example_file(plan.weather), contact_sheet(rows));
     examples.push_back(plan.weather);
   }
-  write_text(out / kCardFile, card_text(config, out, examples));
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  write_text(out / kCardDir / kStatisticsFigure, statistics_svg(statistics));
+  write_text(out / kCardFile, card_text(config, out, examples, statistics));
 }
 
 std::vector<fs::path> dataset_card_files(const ReleaseConfig& config) {
-  std::vector<fs::path> files{kCardFile};
+  std::vector<fs::path> files{kCardFile, fs::path(kCardDir) / kStatisticsFigure};
   for (const SequencePlan& plan : first_of_each_weather(config))
     files.push_back(example_file(plan.weather));
   std::sort(files.begin(), files.end());

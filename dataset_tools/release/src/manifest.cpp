@@ -9,9 +9,11 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/release/dataset_card.h"
+#include "flowscape/release/explorer.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/sha256.h"
+#include "flowscape/release/statistics.h"
 #include "flowscape/scenes/city.h"
 #include "json_integer.h"
 
@@ -159,10 +161,12 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
   for (const fs::path& card : dataset_card_files(config))
     all[card.generic_string()] = file_entry(out / card);
   if (fs::exists(out / kConfigFile)) all[kConfigFile] = file_entry(out / kConfigFile);
-  const nlohmann::json manifest = {
+  nlohmann::json manifest = {
       {"generator", kGeneratorVersion},    {"config", to_json(config)},
       {"counts", counts(config)},          {"layout", layout_json(release_layout(config))},
       {"conventions", conventions_json()}, {"files", all}};
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  if (!statistics.is_null()) manifest["statistics"] = statistics;
   write_text(out / kManifestFile, manifest.dump(1) + "\n");
 }
 
@@ -257,6 +261,7 @@ ReleaseConfig merge_shards(const fs::path& out, bool verify) {
   if (verify) throw_first_problem(release_problems(out, config));
   write_dataset_card(out, config);
   write_manifest(out, config, files);
+  write_explorer(out, out / kExplorerDir, {.progress = true});
   fs::remove_all(out / kShardDir);
   return config;
 }

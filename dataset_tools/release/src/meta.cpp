@@ -156,7 +156,8 @@ nlohmann::json to_json(const SequenceMeta& m) {
   for (const auto& [key, record] : {std::pair{"views", &m.views},
                                     {"actors", &m.actors},
                                     {"boxes_2d", &m.boxes},
-                                    {"rig", &m.rig}})
+                                    {"rig", &m.rig},
+                                    {"statistics", &m.statistics}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }
@@ -183,6 +184,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.actors = j.value("actors", nlohmann::json());
     m.boxes = j.value("boxes_2d", nlohmann::json());
     m.rig = j.value("rig", nlohmann::json());
+    m.statistics = j.value("statistics", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());

@@ -14,8 +14,17 @@
 namespace flowscape {
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan) {
-  return {plan.map,           plan.weather,         plan.seed,     config.vehicles,
-          config.pedestrians, int(plan.seed % 100), config.frames, config.models};
+  return {plan.map,
+          plan.weather,
+          plan.seed,
+          config.vehicles,
+          config.pedestrians,
+          int(plan.seed % 100),
+          config.ego_routes == "free" ? EgoRoute::Free
+          : plan.turns                ? EgoRoute::Turn
+                                      : EgoRoute::Drive,
+          config.frames,
+          config.models};
 }
 
 FramePair Sequence::frame_pair(int frame) const {
@@ -88,7 +97,7 @@ Sequence make_sequence(const SequenceSpec& spec) {
   CityConfig city_config;
   city_config.map = spec.map, city_config.seed = spec.seed;
   city_config.vehicles = spec.vehicles, city_config.pedestrians = spec.pedestrians;
-  city_config.ego_start = spec.ego_start;
+  city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
   city_config.duration = (spec.frames + 1) / kFrameRate;
   city_config.models = spec.models;
   Sequence s{spec, make_city(city_config), randomized(weather_preset(spec.weather), spec.seed)};

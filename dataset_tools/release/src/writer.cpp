@@ -11,10 +11,12 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/dataset_card.h"
+#include "flowscape/release/explorer.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/release/statistics.h"
 #include "flowscape/renderer/denoise.h"
 #include "flowscape/stitcher/stitch.h"
 
@@ -90,12 +92,24 @@ void write_cube(const fs::path& dir, const ReleaseLayout& layout, int frame, int
                [face](auto image) { return face_view(image, face); });
 }
 
+// The statistics of a view's frame, from its images before they are written.
+FrameStatistics statistics_of(const ViewImages& images, int frame, int frames) {
+  const auto image = [&]<class T>(const char* kind, T) {
+    return std::get<Image<T>>(images.at(kind)).view();
+  };
+  const bool flow = has_frame(output_kind("flow"), frame, frames);
+  return frame_statistics(flow ? image("flow", 0.0f) : ImageView<const float>{},
+                          flow ? image("valid", std::uint8_t()) : ImageView<const std::uint8_t>{},
+                          image("semantic", std::uint8_t()), image("instance", std::uint16_t()));
+}
+
 // The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
 // there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
 // directly (exact, and cheap next to colour).
-void write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                           const Sequence& sequence, Renderer& renderer, const CubeToErp* map,
-                           const fs::path& dir, int frame) {
+// Returns the ERP's statistics.
+FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
+                                      const Sequence& sequence, Renderer& renderer,
+                                      const CubeToErp* map, const fs::path& dir, int frame) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   const Projection erp = Projection::equirectangular(config.height);
   GroundTruth truth = renderer.ground_truth(erp, plan.request);
@@ -110,22 +124,30 @@ void write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& lay
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
-  write_single_view(dir, layout, View(), frame, config.frames,
-                    view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps));
+  const ViewImages images =
+      view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps);
+  write_single_view(dir, layout, View(), frame, config.frames, images);
+  return statistics_of(images, frame, config.frames);
 }
 
 // Another rig: every camera ray cast and path traced directly from its own optical centre.
-void write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout, const Rig& rig,
-                     const Sequence& sequence, Renderer& renderer, const fs::path& dir, int frame) {
+// Returns the first camera's statistics (statistics_view).
+FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
+                                const Rig& rig, const Sequence& sequence, Renderer& renderer,
+                                const fs::path& dir, int frame) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
+  FrameStatistics first;
   for (const RigCamera& camera : rig.cameras) {
     const TruthRequest request = at_camera(plan.request, camera);
     GroundTruth truth = renderer.ground_truth(camera.projection, request);
     const Image<float> color =
         release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
-    write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames,
-                      view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps));
+    const ViewImages images =
+        view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps);
+    write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
+    if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
   }
+  return first;
 }
 
 // The 2-D boxes of every instance per view and frame, from the sequence's instance images:
@@ -167,8 +189,8 @@ bool meta_readable(const fs::path& dir) {
 
 // The files and folders of a release that --force deletes (nothing else in `out` is touched).
 void remove_release_files(const fs::path& out) {
-  for (const fs::path& entry :
-       {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile, out / kShardDir})
+  for (const fs::path& entry : {sequence_dir(out, ""), out / kConfigFile, out / kManifestFile,
+                                out / kShardDir, out / kExplorerDir})
     fs::remove_all(entry);
   remove_dataset_card(out);
 }
@@ -184,6 +206,8 @@ nlohmann::json recorded_config(const fs::path& out) {
   if (recorded.is_object()) {  // releases from before these keys held what they say now
     if (!recorded.contains("outputs")) recorded["outputs"] = nlohmann::json::array();
     if (!recorded.contains("flow_gaps")) recorded["flow_gaps"] = {1};
+    if (!recorded.contains("ego_routes")) recorded["ego_routes"] = "free";  // 0.8 and before
+    if (!recorded.contains("turn_share")) recorded["turn_share"] = ReleaseConfig{}.turn_share;
   }
   return recorded;
 }
@@ -206,22 +230,29 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
+  // of every frame: those rendered now as they are written, the others read back
+  const View view = statistics_view(layout);
+  std::vector<FrameStatistics> statistics(std::size_t(config.frames));
+  for (int f = 0; f < config.frames; ++f)
+    if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f))
+      statistics[std::size_t(f)] = frame_statistics(dir, view, f, config.frames);
   if (!frames_to_render.empty()) {
     Renderer renderer(sequence.city.scene);
     const Rig rig = release_rig(config);
     const bool faces = rig.cameras.empty() && config.cube;
     const CubeToErp map = faces ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
     for (int f : frames_to_render) {
-      if (rig.cameras.empty())
-        write_flowscape_frame(config, layout, sequence, renderer, faces ? &map : nullptr, dir, f);
-      else
-        write_rig_frame(config, layout, rig, sequence, renderer, dir, f);
+      statistics[std::size_t(f)] =
+          rig.cameras.empty() ? write_flowscape_frame(config, layout, sequence, renderer,
+                                                      faces ? &map : nullptr, dir, f)
+                              : write_rig_frame(config, layout, rig, sequence, renderer, dir, f);
       progress.frame_done();
     }
   }
   // last: its 2-D boxes come from the frames' instance images, and it marks the sequence done
   SequenceMeta meta = sequence_meta(sequence, plan, config);
   meta.boxes = boxes_json(dir, layout, config.frames);
+  meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps);
   write_meta(dir, meta);
 }
 
@@ -261,6 +292,7 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
   }
   write_dataset_card(out, config);
   write_manifest(out, config, files);
+  write_explorer(out, out / kExplorerDir, {.progress = true});
   return written;
 }
 

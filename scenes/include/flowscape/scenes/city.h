@@ -21,12 +21,28 @@ enum class ActorKind : std::uint8_t { Car, Truck, Bus, Bike, Pedestrian };
 std::string kind_name(ActorKind kind);
 ActorKind kind_from_name(const std::string& name);  // throws std::invalid_argument
 
+// How the ego vehicle's start is found. Free: at start point ego_start, choosing its way at
+// junctions as every vehicle does. Drive: its way kept clear of vehicles for kEgoClearAhead metres
+// at spawn, and starts tried (ego_start first, then every 37th start point on; at most kEgoTries)
+// until it drives at least half its lane's speed on average. Turn: as Drive, but it starts 3 m
+// to 0.3 x (lane speed x duration) before the end of the start point's lane, turns left or right
+// at that junction, and a start must also turn it by 45 degrees. Both judged by `duration` less
+// two frames (a release simulates a frame past the last frame it records); where no try passes,
+// the one that came closest is kept.
+enum class EgoRoute : std::uint8_t { Free, Drive, Turn };
+std::string route_name(EgoRoute route);             // "free", "drive", "turn"
+EgoRoute route_from_name(const std::string& name);  // throws std::invalid_argument
+inline constexpr int kEgoTries = 24;
+inline constexpr double kEgoClearAhead = 40;  // metres
+inline constexpr double kEgoTurnDegrees = 45, kEgoSpeedShare = 0.5;
+
 struct CityConfig {
   int map = 0;  // 0 .. kMapCount - 1
   std::uint64_t seed = 0;
   int vehicles = 60, pedestrians = 60;  // at most 200 together (the ego vehicle not counted)
   int ego_start = 0;                    // index into City::start_points
-  double duration = 4.0;                // seconds of traffic to simulate (poses hold after it)
+  EgoRoute ego_route = EgoRoute::Free;
+  double duration = 4.0;  // seconds of traffic to simulate (poses hold after it)
   // User models replacing the built-in ones, by kind name ("car", "pedestrian", ...): glTF
   // (.gltf/.glb) through tinygltf, anything else through assimp.
   std::map<std::string, std::string> models;
@@ -69,6 +85,8 @@ struct City {
   Scene scene;
   std::vector<StartPoint> start_points;        // 100 .. 120 per map
   std::vector<ActorRecord> actors;             // in scene.actors order
+  StartPoint ego_spawn;                        // where the ego starts (EgoRoute)
+  int ego_tries = 1;                           // starts tried to find it
   PoseTrack ego;                               // the ego vehicle (x forward, z up, on the road)
   Eigen::Vector2d ego_size{4.5, 1.9};          // its length and width (it is not drawn)
   std::function<double(double)> ego_distance;  // metres the ego has driven at time t

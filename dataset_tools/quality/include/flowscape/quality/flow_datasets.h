@@ -40,4 +40,9 @@ FlowDataset find_flow_dataset(const std::filesystem::path& root);
 // Patterns use * and ? in the file name part (the folder part is taken literally).
 FlowDataset glob_flow_dataset(const std::string& images, const std::string& flows, bool panorama);
 
+// At most `per_category` pairs of each category (weather, pass, split), spread evenly over its
+// pairs in their order (the k-th of n taken: pair floor((k + 0.5) n / per_category)); the same
+// dataset gives the same sample.
+FlowDataset sample_pairs(const FlowDataset& dataset, int per_category);
+
 }  // namespace flowscape

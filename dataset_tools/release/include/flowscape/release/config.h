@@ -30,6 +30,15 @@ struct ReleaseConfig {
   std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
                                     "sunny", "cloud", "fog",   "rain"};
   int vehicles = 120, pedestrians = 80;
+  // The share of sequences whose ego turns left or right at a junction within its frames (city.h's
+  // EgoRoute::Turn; the others drive on as traffic lets them, EgoRoute::Drive): sequence number n
+  // of the release turns when floor((n + 1) x share) > floor(n x share), so 1/3: every third.
+  double turn_share = 1.0 / 3;
+  // "mix": turn_share of the sequences turn, the others drive (both Turn and Drive keep the lane
+  // ahead clear at spawn); "free": every ego starts where its seed says and drives as traffic
+  // lets it (EgoRoute::Free: the releases of flowscape 0.8 and before, whose config.json lacks
+  // the key and is read so).
+  std::string ego_routes = "mix";
   // User models replacing the built-in ones, by actor kind (car, truck, bus, bike, pedestrian):
   // glTF through tinygltf, OBJ/FBX/... through assimp, with their textures.
   std::map<std::string, std::string> models;
@@ -92,8 +101,10 @@ struct SequencePlan {
   int map, index, number;  // number: position in the whole release
   std::string weather;
   std::uint64_t seed;
+  bool turns;  // its ego turns at a junction (ReleaseConfig::turn_share of ego_routes "mix")
 };
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& config);  // every shard's
+std::vector<std::string> sequence_names(const ReleaseConfig& config);   // theirs, in that order
 bool in_shard(const SequencePlan& plan, const ReleaseConfig& config);
 std::vector<SequencePlan> shard_plans(const ReleaseConfig& config);  // this shard's
 

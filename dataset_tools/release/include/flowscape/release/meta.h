@@ -31,7 +31,8 @@ struct SequenceMeta {
   // Calibration of every view (views_json), every actor per frame (box and velocities), and the
   // 2-D box of each instance per view and frame (instance_boxes); null when not recorded.
   nlohmann::json views, actors, boxes;
-  nlohmann::json rig;  // the rig's record (renderer/rig.h) for other rigs than flowscape
+  nlohmann::json rig;         // the rig's record (renderer/rig.h) for other rigs than flowscape
+  nlohmann::json statistics;  // statistics.h's record of the sequence (null when not recorded)
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from

@@ -20,10 +20,12 @@ struct SequenceSpec {
   std::uint64_t seed = 0;         // the city, traffic, weather variant and colour noise
   int vehicles = 120, pedestrians = 80;
   int ego_start = 0;  // index into City::start_points
+  EgoRoute ego_route = EgoRoute::Drive;
   int frames = 100;
   std::map<std::string, std::string> models;  // ReleaseConfig::models
 };
-// The spec of a planned sequence of a release (its ego start follows from its seed).
+// The spec of a planned sequence of a release (its ego start follows from its seed, its route
+// from the plan's `turns`).
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);
 
 struct Sequence {
