@@ -141,8 +141,9 @@ void statistics_section(std::ostringstream& md, const nlohmann::json& statistics
      << ")\n\n| group | sequences | turning | ego speed m/s (mean) | yaw rate deg/s (p90) | "
         "flow p50 | flow p90 | flow p99 | actor pixels | valid pixels |\n| --- | --- | --- | --- "
         "| --- | --- | --- | --- | --- | --- |\n";
-  for (const char* kind : {"maps", "weathers"})
-    for (const auto& [name, group] : statistics.at(kind).items()) statistics_row(md, name, group);
+  for (const auto& [kind, label] : {std::pair{"maps", "map "}, {"weathers", "weather "}})
+    for (const auto& [name, group] : statistics.at(kind).items())
+      statistics_row(md, label + name, group);
   statistics_row(md, "all", statistics.at("all"));
 }
 
