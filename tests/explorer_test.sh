@@ -68,5 +68,13 @@ wrong_size() {  # a mask of another size in a release: named, no page
     [ ! -e "$work/d/explorer/index.html" ]
 }
 check "a mask of another size is named and no page is written" wrong_size
+bad_record() {  # a statistics record cut short in one meta.json: named, no page
+  cp -r "$work/b" "$work/e" && rm -rf "$work/e/explorer"
+  local meta=$work/e/sequences/map00_seq01/meta.json
+  python3 -c "import json,sys; m=json.load(open(sys.argv[1])); m['statistics']['flow_histogram']=[1]
+json.dump(m, open(sys.argv[1], 'w'))" "$meta" &&
+    fails_clearly "$meta: statistics" "$bin/flowscape_explore" "$work/e" && [ ! -e "$work/e/explorer/index.html" ]
+}
+check "a bad statistics record is named and no page is written" bad_record
 check "a missing release is named" fails_clearly "not a FlowScape release" "$bin/flowscape_explore" "$work/none"
 finish

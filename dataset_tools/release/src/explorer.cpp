@@ -192,7 +192,7 @@ nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
     if (meta.statistics.is_null())  // a release from before meta.json recorded them
       meta.statistics =
           sequence_statistics_from_files(dir, layout, meta.poses, meta.frames, meta.fps);
-    statistics_of.push_back({meta.map_name, meta.base_weather(), meta.frames, meta.statistics});
+    statistics_of.push_back(checked_statistics(dir, meta));
     std::vector<int> frames = sampled_frames(meta.frames, options.frames);
     sequences.push_back({info, std::move(meta), std::move(frames)});
   }

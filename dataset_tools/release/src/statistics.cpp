@@ -324,17 +324,22 @@ nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequenc
           {"weathers", groups_json(per_weather)}};
 }
 
+SequenceStatistics checked_statistics(const fs::path& sequence_dir, const SequenceMeta& meta) {
+  SequenceStatistics s{meta.map_name, meta.base_weather(), meta.frames, meta.statistics};
+  try {
+    release_statistics({s});
+  } catch (const nlohmann::json::exception& e) {
+    throw FileError(sequence_dir / kMetaFile, std::string("statistics: ") + e.what());
+  }
+  return s;
+}
+
 nlohmann::json release_statistics(const fs::path& out, const std::vector<std::string>& sequences) {
   std::vector<SequenceStatistics> recorded;
   for (const std::string& name : sequences) {
-    const SequenceMeta meta = read_meta(sequence_dir(out, name));
-    if (!meta.statistics.is_object()) continue;
-    recorded.push_back({meta.map_name, meta.base_weather(), meta.frames, meta.statistics});
-    try {
-      release_statistics({recorded.back()});  // names the meta.json a bad record is in
-    } catch (const nlohmann::json::exception& e) {
-      throw FileError(sequence_dir(out, name) / kMetaFile, std::string("statistics: ") + e.what());
-    }
+    const fs::path dir = sequence_dir(out, name);
+    const SequenceMeta meta = read_meta(dir);
+    if (meta.statistics.is_object()) recorded.push_back(checked_statistics(dir, meta));
   }
   return release_statistics(recorded);
 }

@@ -14,6 +14,7 @@
 #include "flowscape/core/image.h"
 #include "flowscape/core/types.h"
 #include "flowscape/release/layout.h"
+#include "flowscape/release/meta.h"
 
 namespace flowscape {
 
@@ -64,6 +65,10 @@ struct SequenceStatistics {
   nlohmann::json statistics;  // sequence_statistics_json's
 };
 nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequences);
+// A sequence's record from its meta.json (read from `sequence_dir`), checked: a record
+// release_statistics cannot read is a FileError naming the meta.json.
+SequenceStatistics checked_statistics(const std::filesystem::path& sequence_dir,
+                                      const SequenceMeta& meta);
 // Of the sequences of the release in `out` that have statistics in their meta.json.
 nlohmann::json release_statistics(const std::filesystem::path& out,
                                   const std::vector<std::string>& sequences);
