@@ -31,14 +31,13 @@ struct Extremes {
   long junction_frames = 0, shared_frames = 0;  // frames with vehicles in a junction / with two+
 };
 
-double yaw(const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); }
 V2 ground(const Pose& p) { return p.translation().head<2>(); }
 
 void measure_track(const PoseTrack& track, int frames, Extremes& e, bool ego, double* ego_change) {
   for (int f = 1; f + 1 < frames; ++f) {
     const Pose a = track((f - 1) * kFrame), b = track(f * kFrame), c = track((f + 1) * kFrame);
-    const double rate0 = std::remainder(yaw(b) - yaw(a), 2 * kPi) / kFrame;
-    const double rate1 = std::remainder(yaw(c) - yaw(b), 2 * kPi) / kFrame;
+    const double rate0 = wrapped_angle(yaw_of(b) - yaw_of(a)) / kFrame;
+    const double rate1 = wrapped_angle(yaw_of(c) - yaw_of(b)) / kFrame;
     const double v0 = (ground(b) - ground(a)).norm() / kFrame;
     const double v1 = (ground(c) - ground(b)).norm() / kFrame;
     const double change = std::abs(rate1 - rate0);
@@ -59,13 +58,13 @@ void count_lane_changes(const City& city, const PoseTrack& track, int frames, Ex
   double most_off = 0;  // a lane change heads at most 18 degrees off, the diagonal street 45
   for (int f = 0; f < frames; ++f) {
     const Pose p = track(f * kFrame);
-    const double off_axis = std::abs(std::remainder(yaw(p), kPi / 2));
+    const double off_axis = std::abs(std::remainder(yaw_of(p), kPi / 2));
     const bool now = city.area_at(ground(p)) == Area::Road && off_axis > 1e-6;
     if (now && start < 0) start = std::max(0, f - 1), most_off = 0;
     most_off = std::max(most_off, off_axis);
     if (now || start < 0) continue;
     e.lane_changes +=
-        std::abs(std::remainder(yaw(p) - yaw(track(start * kFrame)), 2 * kPi)) < 1e-6 &&
+        std::abs(std::remainder(yaw_of(p) - yaw_of(track(start * kFrame)), 2 * kPi)) < 1e-6 &&
         most_off < 20 * kPi / 180;
     start = -1;
   }
@@ -92,8 +91,8 @@ void measure_junctions(const City& city, const std::vector<PoseTrack>& vehicles,
 double ego_turn_degrees(const PoseTrack& ego, int frames) {
   double turned = 0;
   for (int f = 1; f < frames; ++f)
-    turned =
-        std::max(turned, std::abs(std::remainder(yaw(ego(f * kFrame)) - yaw(ego(0)), 2 * kPi)));
+    turned = std::max(turned,
+                      std::abs(std::remainder(yaw_of(ego(f * kFrame)) - yaw_of(ego(0)), 2 * kPi)));
   return turned * 180 / kPi;
 }
 

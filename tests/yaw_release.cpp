@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
   write_meta(seq, meta);
   for (const char* side : {"train", "test"})
     write_text(split_file(out, side), plan.name + " " + frame_name(0) + "\n");
-  write_dataset_card(out, config);
-  write_manifest(out, config, file_hashes(out, config, {plan}));
+  write_dataset_card(out, config, nullptr);  // its meta.json records no statistics
+  write_manifest(out, config, file_hashes(out, config, {plan}), nullptr);
   std::printf("%s\n", out.c_str());
   return 0;
 }

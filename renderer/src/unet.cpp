@@ -249,6 +249,7 @@ class Network {
     operations_.push_back(
         {dnnl::reorder(dnnl::reorder::primitive_desc(engine_, desc(t), engine_, wanted)),
          {{DNNL_ARG_FROM, t}, {DNNL_ARG_TO, out}},
+         {},
          {}});
     return out;
   }
@@ -321,6 +322,7 @@ class Network {
     operations_.push_back(
         {dnnl::concat(pd),
          {{DNNL_ARG_MULTIPLE_SRC, a}, {DNNL_ARG_MULTIPLE_SRC + 1, b}, {DNNL_ARG_DST, out}},
+         {},
          {}});
     return out;
   }

@@ -231,11 +231,10 @@ double ego_score(const Track& track, double lane_speed, double until, EgoRoute r
   const double speed = track.distance_at(until) / until;
   double score = std::min(1.0, speed / (kEgoSpeedShare * lane_speed));
   if (route != EgoRoute::Turn) return score;
-  const auto yaw = [](const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); };
   double turned = 0;
   for (double t = 0; t <= until; t += track.step)
-    turned = std::max(turned,
-                      std::abs(std::remainder(yaw(track.pose(t)) - yaw(track.pose(0)), 2 * kPi)));
+    turned =
+        std::max(turned, std::abs(wrapped_angle(yaw_of(track.pose(t)) - yaw_of(track.pose(0)))));
   return score + std::min(1.0, turned * 180 / kPi / kEgoTurnDegrees);
 }
 

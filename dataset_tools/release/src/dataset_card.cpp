@@ -219,7 +219,8 @@ fs::path example_file(const std::string& weather) {
 
 }  // namespace
 
-void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
+void write_dataset_card(const fs::path& out, const ReleaseConfig& config,
+                        const nlohmann::json& statistics) {
   remove_temporary_files(out / kCardDir);
   std::vector<std::string> examples;
   const ReleaseLayout layout = release_layout(config);
@@ -230,7 +231,6 @@ void write_dataset_card(const fs::path& out, const ReleaseConfig& config) {
     write_image(out / example_file(plan.weather), contact_sheet(rows));
     examples.push_back(plan.weather);
   }
-  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
   write_text(out / kCardDir / kStatisticsFigure, statistics_svg(statistics));
   write_text(out / kCardFile, card_text(config, out, examples, statistics));
 }

@@ -23,8 +23,9 @@ namespace {
 
 constexpr const char* kPreviewsDir = "previews";
 
-// `wanted` frames of `frames`, spread evenly, first and last included.
+// `wanted` frames of `frames`, spread evenly, first and last included (one: the first).
 std::vector<int> sampled_frames(int frames, int wanted) {
+  if (wanted == 1) return {0};
   if (frames <= wanted) {
     std::vector<int> all(std::size_t(frames), 0);
     for (int f = 0; f < frames; ++f) all[std::size_t(f)] = f;
@@ -36,11 +37,10 @@ std::vector<int> sampled_frames(int frames, int wanted) {
   return picked;
 }
 
-// Every kind a view has (the rule write_view follows).
 std::vector<ReleaseKind> kinds_of(const ReleaseLayout& layout, const View& view) {
   std::vector<ReleaseKind> kinds;
   for (const ReleaseKind& kind : layout.kinds)
-    if (view.is_erp() ? kind.row->erp : kind.row->cube) kinds.push_back(kind);
+    if (in_view(kind, view)) kinds.push_back(kind);
   return kinds;
 }
 
@@ -72,11 +72,11 @@ Image<std::uint8_t> vector_preview(const Image<float>& vectors, double scale) {
   });
 }
 
-Image<std::uint8_t> gray_to_rgb(const Image<std::uint8_t>& gray, int gain) {
-  Image<std::uint8_t> rgb(gray.width, gray.height, 3);
-  for (std::size_t i = 0; i < gray.pixel_count(); ++i)
-    rgb.data[3 * i] = rgb.data[3 * i + 1] = rgb.data[3 * i + 2] =
-        std::uint8_t(std::min(255, gray.data[i] * gain));
+// A mask: white where it is not 0.
+Image<std::uint8_t> mask_preview(const Image<std::uint8_t>& mask) {
+  Image<std::uint8_t> rgb(mask.width, mask.height, 3);
+  for (std::size_t i = 0; i < mask.pixel_count(); ++i)
+    rgb.data[3 * i] = rgb.data[3 * i + 1] = rgb.data[3 * i + 2] = mask.data[i] ? 255 : 0;
   return rgb;
 }
 
@@ -108,7 +108,7 @@ Image<std::uint8_t> kind_preview(const fs::path& dir, const ReleaseKind& kind, c
   }
   if (name == "color") return read_image<std::uint8_t>(file);
   if (name == "semantic") return semantic_to_color(read_image<std::uint8_t>(file).view());
-  if (kind.row->pixel == PixelType::UInt8) return gray_to_rgb(read_image<std::uint8_t>(file), 255);
+  if (kind.row->pixel == PixelType::UInt8) return mask_preview(read_image<std::uint8_t>(file));
   if (kind.row->pixel == PixelType::UInt16)
     return instance_preview(read_image<std::uint16_t>(file));
   if (kind.row->channels == 1) return depth_preview(read_image<float>(file));

@@ -182,7 +182,7 @@ std::vector<fs::path> ReleaseLayout::frame_files(int frame, int frames) const {
   std::vector<fs::path> files;
   for (const View& view : views())
     for (const ReleaseKind& kind : kinds)
-      if ((view.is_erp() ? kind.row->erp : kind.row->cube) && kind.has_frame(frame, frames))
+      if (in_view(kind, view) && kind.has_frame(frame, frames))
         files.push_back(frame_file(kind, view, frame));
   return files;
 }

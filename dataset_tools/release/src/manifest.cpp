@@ -156,7 +156,8 @@ nlohmann::json file_hashes(const fs::path& out, const ReleaseConfig& config,
   return hashes;
 }
 
-void write_manifest(const fs::path& out, const ReleaseConfig& config, const nlohmann::json& files) {
+void write_manifest(const fs::path& out, const ReleaseConfig& config, const nlohmann::json& files,
+                    const nlohmann::json& statistics) {
   nlohmann::json all = files;
   for (const fs::path& card : dataset_card_files(config))
     all[card.generic_string()] = file_entry(out / card);
@@ -165,7 +166,6 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
       {"generator", kGeneratorVersion},    {"config", to_json(config)},
       {"counts", counts(config)},          {"layout", layout_json(release_layout(config))},
       {"conventions", conventions_json()}, {"files", all}};
-  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
   if (!statistics.is_null()) manifest["statistics"] = statistics;
   write_text(out / kManifestFile, manifest.dump(1) + "\n");
 }
@@ -259,8 +259,9 @@ ReleaseConfig merge_shards(const fs::path& out, bool verify) {
   }
   config.shard = 0, config.shards = 1;
   if (verify) throw_first_problem(release_problems(out, config));
-  write_dataset_card(out, config);
-  write_manifest(out, config, files);
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  write_dataset_card(out, config, statistics);
+  write_manifest(out, config, files, statistics);
   write_explorer(out, out / kExplorerDir, {.progress = true});
   fs::remove_all(out / kShardDir);
   return config;

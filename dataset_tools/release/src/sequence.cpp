@@ -191,8 +191,7 @@ nlohmann::json vector_json(const Vec3& v) {
 void add_box_pose(nlohmann::json& columns, const Pose& pose, const std::string& suffix) {
   const Eigen::Quaterniond q(pose.linear());
   columns["centre" + suffix].push_back(vector_json(pose.translation()));
-  columns["heading" + suffix].push_back(
-      rounded(std::atan2(pose.linear()(1, 0), pose.linear()(0, 0))));
+  columns["heading" + suffix].push_back(rounded(yaw_of(pose)));
   columns["rotation" + suffix].push_back(
       {rounded(q.w()), rounded(q.x()), rounded(q.y()), rounded(q.z())});
 }

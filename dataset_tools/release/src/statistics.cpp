@@ -11,6 +11,7 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/scenes/model_io.h"
+#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
@@ -18,7 +19,6 @@ namespace {
 
 constexpr double kReferenceWidth = 1024;  // flow magnitudes are given in pixels of this width
 constexpr int kBinsPerOctave = 8, kFirstOctave = -4, kLastOctave = 10;
-constexpr double kKnownFlowBound = 1e9;           // above: unknown (flow_io.h)
 constexpr double kSpeedBin = 1, kYawRateBin = 2;  // m/s, degrees/s
 constexpr int kSpeedBins = 30, kYawRateBins = 45;
 
@@ -36,11 +36,6 @@ std::size_t flow_bin(double magnitude) {
   const std::vector<double>& edges = flow_bin_edges();
   return std::size_t(std::upper_bound(edges.begin(), edges.end(), magnitude) - edges.begin()) - 1;
 }
-
-// The rig's heading: the angle of its x axis in the world's xy plane, radians, left positive.
-double heading(const Pose& pose) { return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0)); }
-
-double wrapped(double angle) { return std::remainder(angle, 2 * kPi); }
 
 std::string view_name(const View& view) { return view_dir(view).generic_string(); }
 
@@ -78,7 +73,7 @@ FrameStatistics frame_statistics(ImageView<const float> flow, ImageView<const st
   for (std::size_t i = 0; i < flow.pixel_count(); ++i) {
     s.valid_pixels += valid.data[i] > 0;
     const float u = flow.data[2 * i], v = flow.data[2 * i + 1];
-    if (!(std::abs(u) < kKnownFlowBound && std::abs(v) < kKnownFlowBound)) continue;
+    if (!is_known_flow(u, v)) continue;
     const double magnitude = std::hypot(double(u), double(v)) * scale;
     ++s.flow_histogram[flow_bin(magnitude)];
     s.flow_sum += magnitude;
@@ -162,7 +157,7 @@ nlohmann::json ego_json(const std::vector<Pose>& poses, double fps) {
   double yaw_change = 0;
   for (std::size_t f = 0; f + 1 < poses.size(); ++f) {
     speed.push_back((poses[f + 1].translation() - poses[f].translation()).norm() * fps);
-    const double turn = wrapped(heading(poses[f + 1]) - heading(poses[f])) * 180 / kPi;
+    const double turn = wrapped_angle(yaw_of(poses[f + 1]) - yaw_of(poses[f])) * 180 / kPi;
     yaw_rate.push_back(turn * fps);
     yaw_change += turn;
   }
@@ -237,8 +232,8 @@ struct Group {
     add_all(histogram, s.at("flow_histogram"));
     add_all(classes, s.at("class_pixels"));
     flow_sum += s.at("flow_sum").get<double>();
-    pixels += s.at("pixels").get<std::uint64_t>(),
-        actor += s.at("actor_pixels").get<std::uint64_t>();
+    pixels += s.at("pixels").get<std::uint64_t>();
+    actor += s.at("actor_pixels").get<std::uint64_t>();
     valid += s.at("valid_pixels").get<std::uint64_t>();
     flow_frame_pixels += s.at("flow_frame_pixels").get<std::uint64_t>();
     const nlohmann::json& ego = s.at("ego");
@@ -327,7 +322,7 @@ nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequenc
 SequenceStatistics checked_statistics(const fs::path& sequence_dir, const SequenceMeta& meta) {
   SequenceStatistics s{meta.map_name, meta.base_weather(), meta.frames, meta.statistics};
   try {
-    release_statistics({s});
+    Group().add(s.statistics, s.frames);
   } catch (const nlohmann::json::exception& e) {
     throw FileError(sequence_dir / kMetaFile, std::string("statistics: ") + e.what());
   }

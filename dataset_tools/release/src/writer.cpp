@@ -70,8 +70,7 @@ template <class Cut>
 void write_view(const fs::path& dir, const ReleaseLayout& layout, const View& view, int frame,
                 int frames, const ViewImages& images, const Cut& face_of) {
   for (const ReleaseKind& kind : layout.kinds) {
-    if (!(view.is_erp() ? kind.row->erp : kind.row->cube) || !kind.has_frame(frame, frames))
-      continue;
+    if (!in_view(kind, view) || !kind.has_frame(frame, frames)) continue;
     std::visit(
         [&](const auto& image) {
           write_output(dir / frame_file(kind, view, frame), *kind.row, face_of(image.view()));
@@ -290,8 +289,9 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
     written.manifest = shard_manifest_path(out, config);
     return written;
   }
-  write_dataset_card(out, config);
-  write_manifest(out, config, files);
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  write_dataset_card(out, config, statistics);
+  write_manifest(out, config, files, statistics);
   write_explorer(out, out / kExplorerDir, {.progress = true});
   return written;
 }

@@ -8,14 +8,10 @@
 namespace flowscape::lens {
 namespace {
 
-class DoubleSphere : public Lens {
+class DoubleSphere : public SizedLens {
  public:
   explicit DoubleSphere(const nlohmann::json& p)
-      : width_(dimension(p, "width")),
-        height_(dimension(p, "height")),
-        k_(intrinsics(p)),
-        xi_(number(p, "xi")),
-        alpha_(number(p, "alpha")) {
+      : SizedLens(p), k_(intrinsics(p)), xi_(number(p, "xi")), alpha_(number(p, "alpha")) {
     require(alpha_ >= 0 && alpha_ <= 1, "lens parameter \"alpha\" must be in [0, 1]");
     require(xi_ > -1 && xi_ < 1, "lens parameter \"xi\" must be in (-1, 1)");
     const double w1 = alpha_ <= 0.5 ? alpha_ / (1 - alpha_) : (1 - alpha_) / alpha_;
@@ -26,8 +22,6 @@ class DoubleSphere : public Lens {
             "lens max_angle_degrees is beyond what the double sphere model reaches");
   }
   std::string model() const override { return "double_sphere"; }
-  int width() const override { return width_; }
-  int height() const override { return height_; }
   nlohmann::json parameters() const override {
     return {{"width", width_}, {"height", height_}, {"K", k_.matrix()},
             {"xi", xi_},       {"alpha", alpha_},   {"max_angle_degrees", max_angle_ / kDegree}};
@@ -55,7 +49,6 @@ class DoubleSphere : public Lens {
   }
 
  private:
-  int width_, height_;
   Intrinsics k_;
   double xi_, alpha_, w2_ = 0, max_angle_ = 0;
 };

@@ -7,10 +7,9 @@
 namespace flowscape::lens {
 namespace {
 
-class DualFisheye : public Lens {
+class DualFisheye : public SizedLens {
  public:
-  explicit DualFisheye(const nlohmann::json& p)
-      : width_(dimension(p, "width")), height_(dimension(p, "height")) {
+  explicit DualFisheye(const nlohmann::json& p) : SizedLens(p) {
     require(width_ == 2 * height_, "a dual fisheye image is twice as wide as high");
     max_angle_ = number(p, "max_angle_degrees") * kDegree;
     require(max_angle_ >= kPi / 2 && max_angle_ < kPi,
@@ -19,8 +18,6 @@ class DualFisheye : public Lens {
     require(f_ > 0, "lens parameter \"f\" must be positive");
   }
   std::string model() const override { return "dual_fisheye"; }
-  int width() const override { return width_; }
-  int height() const override { return height_; }
   nlohmann::json parameters() const override {
     return {{"width", width_},
             {"height", height_},
@@ -49,7 +46,6 @@ class DualFisheye : public Lens {
 
  private:
   Vec2 centre(bool rear) const { return {(rear ? 1.5 : 0.5) * height_, 0.5 * height_}; }
-  int width_, height_;
   double max_angle_ = 0, f_ = 0;
 };
 

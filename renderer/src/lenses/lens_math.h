@@ -42,12 +42,23 @@ double solve_increasing(const std::function<double(double)>& f,
 // polynomial model folds back.
 double increasing_until(const std::function<double(double)>& f, double limit);
 
-// A radially symmetric lens: a direction at angle theta from the optical axis and azimuth phi
-// lands at c + g(theta) (fx cos phi, fy sin phi); g increasing on [0, max_angle].
-class RadialLens : public Lens {
+// A lens of the image size its parameters give ("width", "height").
+class SizedLens : public Lens {
  public:
   int width() const override { return width_; }
   int height() const override { return height_; }
+
+ protected:
+  SizedLens() = default;
+  explicit SizedLens(const nlohmann::json& p)
+      : width_(dimension(p, "width")), height_(dimension(p, "height")) {}
+  int width_ = 0, height_ = 0;
+};
+
+// A radially symmetric lens: a direction at angle theta from the optical axis and azimuth phi
+// lands at c + g(theta) (fx cos phi, fy sin phi); g increasing on [0, max_angle].
+class RadialLens : public SizedLens {
+ public:
   std::optional<Vec3> ray(Vec2 pixel) const override;
   std::optional<Vec2> project(const Vec3& direction) const override;
 
@@ -56,7 +67,6 @@ class RadialLens : public Lens {
   virtual double radius_slope(double theta) const = 0;  // dg / dtheta
   // Call once the subclass's coefficients are set: checks that g increases up to max_angle.
   void finish(int width, int height, double fx, double fy, double cx, double cy, double max_angle);
-  int width_ = 0, height_ = 0;
   double fx_ = 1, fy_ = 1, cx_ = 0, cy_ = 0, max_angle_ = 0;  // cx, cy: continuous coordinates
 };
 

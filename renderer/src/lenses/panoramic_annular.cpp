@@ -10,11 +10,10 @@
 namespace flowscape::lens {
 namespace {
 
-class PanoramicAnnular : public Lens {
+class PanoramicAnnular : public SizedLens {
  public:
   explicit PanoramicAnnular(const nlohmann::json& p)
-      : width_(dimension(p, "width")),
-        height_(dimension(p, "height")),
+      : SizedLens(p),
         centre_(numbers(p, "centre", 2)),
         affine_(numbers(p, "affine", 3, std::vector<double>{1, 0, 0})),
         a_(numbers(p, "polynomial", 5)),
@@ -30,8 +29,6 @@ class PanoramicAnnular : public Lens {
     rho_min_ = solve(min_angle_, 0, end), rho_max_ = solve(max_angle_, 0, end);
   }
   std::string model() const override { return "panoramic_annular"; }
-  int width() const override { return width_; }
-  int height() const override { return height_; }
   nlohmann::json parameters() const override {
     return {{"width", width_},
             {"height", height_},
@@ -80,7 +77,6 @@ class PanoramicAnnular : public Lens {
     return a;
   }
 
-  int width_, height_;
   std::vector<double> centre_, affine_, a_;
   double min_angle_, max_angle_, rho_min_ = 0, rho_max_ = 0;
 };

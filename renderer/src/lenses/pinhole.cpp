@@ -8,20 +8,15 @@
 namespace flowscape::lens {
 namespace {
 
-class Pinhole : public Lens {
+class Pinhole : public SizedLens {
  public:
   explicit Pinhole(const nlohmann::json& p)
-      : width_(dimension(p, "width")),
-        height_(dimension(p, "height")),
-        k_(intrinsics(p)),
-        d_(numbers(p, "D", 5, std::vector<double>(5, 0))) {
+      : SizedLens(p), k_(intrinsics(p)), d_(numbers(p, "D", 5, std::vector<double>(5, 0))) {
     // where the radial part stops growing, up to 84 degrees off the axis (r = 10)
     max_r_ = increasing_until([this](double r) { return r * radial(r * r); }, 10);
     require(max_r_ > 0.05, "lens distortion folds back right next to the axis");
   }
   std::string model() const override { return "pinhole"; }
-  int width() const override { return width_; }
-  int height() const override { return height_; }
   nlohmann::json parameters() const override {
     return {{"width", width_}, {"height", height_}, {"K", k_.matrix()}, {"D", d_}};
   }
@@ -66,7 +61,6 @@ class Pinhole : public Lens {
     return j;
   }
 
-  int width_, height_;
   Intrinsics k_;
   std::vector<double> d_;
   double max_r_ = 0;

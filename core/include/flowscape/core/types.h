@@ -3,6 +3,7 @@
 // z up, metres, seconds, frames at 30 Hz).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace flowscape {
 
@@ -13,5 +14,12 @@ using Pose = Eigen::Isometry3d;  // object -> world (metres; z up)
 
 inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kFrameRate = 30;  // frames per second of every sequence (design.md)
+
+// The heading of a pose: the angle of its x axis in the world's xy plane (radians, left positive).
+inline double yaw_of(const Pose& pose) {
+  return std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+}
+// An angle (radians) wrapped to [-pi, pi].
+inline double wrapped_angle(double radians) { return std::remainder(radians, 2 * kPi); }
 
 }  // namespace flowscape

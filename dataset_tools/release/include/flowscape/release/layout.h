@@ -124,6 +124,10 @@ struct View {
   static View of_camera(std::string name);
   bool is_erp() const { return !face && camera.empty(); }
 };
+// Whether a view holds a kind: the ERP its `erp` rows, faces and rig cameras its `cube` rows.
+inline bool in_view(const ReleaseKind& kind, const View& view) {
+  return view.is_erp() ? kind.row->erp : kind.row->cube;
+}
 inline constexpr const char* kErpDir = "erp";          // the ERP view's folder
 inline constexpr const char* kCubeDir = "cube";        // the faces' folders are cube/<face>
 inline constexpr const char* kCamerasDir = "cameras";  // a rig's cameras are cameras/<name>

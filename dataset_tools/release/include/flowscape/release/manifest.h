@@ -16,9 +16,10 @@ inline constexpr const char* kGeneratorVersion = "flowscape 0.9";
 // file is a FileError.
 nlohmann::json file_hashes(const std::filesystem::path& out, const ReleaseConfig& config,
                            const std::vector<SequencePlan>& plans);
-// manifest.json: the files given plus the dataset card's and config.json.
+// manifest.json: the files given plus the dataset card's and config.json, and the release's
+// statistics (left out when null).
 void write_manifest(const std::filesystem::path& out, const ReleaseConfig& config,
-                    const nlohmann::json& files);
+                    const nlohmann::json& files, const nlohmann::json& statistics);
 
 // manifests/shard-K-of-N.json: what one shard (config.shard of config.shards) wrote.
 std::filesystem::path shard_manifest_path(const std::filesystem::path& out,
