@@ -14,6 +14,7 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/release/gallery.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/scenes/model_io.h"
 
@@ -32,6 +33,8 @@ struct Options {
   std::map<std::string, std::string> models;
   std::vector<std::string> rigs;  // when given: one row per camera of each rig, of the first map
   bool plan = false;              // seen from above instead of from the ego
+  bool actors = false;            // the gallery of the built-in actor models instead
+  std::vector<std::string> actor_models;
 };
 
 // A pinhole 40 degrees wide looking straight down on the middle of the map's roads, north up,
@@ -163,12 +166,25 @@ int main(int argc, char** argv) {
   app.add_flag("--plan", o.plan,
                "each map seen from above (colour and semantics, --height pixels square) instead "
                "of from the ego");
+  app.add_flag("--actors", o.actors,
+               "the gallery of built-in actor models instead: one row per model seen from the "
+               "front, side, back and three-quarters, and its semantics, --height pixels high");
+  app.add_option("--actor-models", o.actor_models,
+                 "with --actors: these models only (hatchback saloon estate suv pickup van taxi "
+                 "police delivery_van city_bus box_truck lorry motorbike bicycle man woman child "
+                 "umbrella jogger)");
   finish_options(app, "city_preview");
   CLI11_PARSE(app, argc, argv);
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
     o.models = parse_models(models);
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
+    if (o.actors) {
+      sheet = actor_gallery({o.height, o.color, o.actor_models});
+      write_image(o.out, contact_sheet(sheet));
+      std::printf("%s: %zu models\n", o.out.c_str(), sheet.size());
+      return 0;
+    }
     for (const std::string& rig : o.rigs) {
       const auto rows = render_rig(o, o.maps[0], rig);
       sheet.insert(sheet.end(), rows.begin(), rows.end());

@@ -123,12 +123,21 @@ int main(int argc, char** argv) {
   option("--rig", "rig", defaults.rig,
          "the cameras: flowscape (the ERP and six cube faces), fisheye, woodscape, pal, "
          "dual-fisheye, or a rig file (.json, docs/cameras.md)");
+  option("--actors", "actors", defaults.actors,
+         "detailed: the built-in vehicle families and people, parked vehicles as actors, the ego "
+         "vehicle drawn; legacy: flowscape 0.9's box models (reproduces its releases)");
+  option("--classes", "classes", defaults.classes,
+         "the semantic class table: carla-0.9.13 (FlowScape's 23 ids) or carla-0.9.14 (rider, car, "
+         "truck, bus, motorcycle, bicycle apart, and the ego vehicle as 29)");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
                  "glTF or anything assimp reads, textures included; repeat for several kinds "
                  "(replaces the config file's \"models\")");
   bool no_cube = false, check = false, force = false;
+  option("--ego", "ego", defaults.ego,
+         "the ego vehicle under the rig (detailed actors): on, off, or auto: drawn for every rig "
+         "but flowscape (FlowScape's CARLA frames show no ego)");
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
   app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);

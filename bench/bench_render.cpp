@@ -45,11 +45,11 @@ Scene street_fixture() {
     Actor car{std::uint16_t(c + 1), {}, [x0, lane, speed](double t) {
                 return Pose(Eigen::Translation3d(x0 + speed * t, lane, 0.8));
               }};
-    Part body{{}, fixed_pose()};
-    add_box(body.mesh, Eigen::Vector3f(-2.2f, -0.9f, -0.8f), Eigen::Vector3f(2.2f, 0.9f, 0.7f),
+    Mesh body;
+    add_box(body, Eigen::Vector3f(-2.2f, -0.9f, -0.8f), Eigen::Vector3f(2.2f, 0.9f, 0.7f),
             SemanticClass::Vehicles);
-    body.mesh.materials.assign(body.mesh.triangles.size(), 2);
-    car.parts.push_back(std::move(body));
+    body.materials.assign(body.triangles.size(), 2);
+    car.parts.push_back(rigid_part(std::move(body)));
     scene.actors.push_back(std::move(car));
   }
   return scene;

@@ -1,8 +1,13 @@
 #include "embree_scene.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+
+#include "flowscape/scenes/skinning.h"
 
 namespace flowscape {
 namespace {
@@ -12,25 +17,39 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 // count as an occluder (float hit points are good to about 1e-6 of their distance).
 constexpr double kVisibilityMargin = 1e-4;
 
-// Embree's filter: a hit on a hole of an alpha mask is no hit.
+// Embree's filter: a hit on a hole of an alpha mask is no hit; nor is a window to the sun's rays.
 void coverage_filter(const RTCFilterFunctionNArguments* args) {
   const auto* masked = static_cast<const MaskedMesh*>(args->geometryUserPtr);
+  const MeshRef& ref = *masked->ref;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
     const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    const std::uint16_t material = material_of(ref, triangle);
+    if ((RTCRayN_mask(args->ray, args->N, i) & kSunMask) &&
+        (*masked->materials)[material].kind == Material::Kind::Window) {
+      args->valid[i] = 0;
+      continue;
+    }
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    if (!masked->coverage->covered(*masked->mesh, triangle, u, v)) args->valid[i] = 0;
+    if (masked->coverage && !masked->coverage->covered(material, *ref.rest, triangle, u, v))
+      args->valid[i] = 0;
   }
 }
 
-RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked) {
-  RTCScene bvh = rtcNewScene(device);
-  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                               RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                               mesh.vertices.size()));
+void copy_vertices(const Mesh& mesh, float* vertices) {
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
     for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.vertices[i][c];
+}
+
+// A BVH of one mesh; `refit`: its vertices will move (skinned), the tree is refitted, not rebuilt.
+RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, bool refit,
+                   RTCGeometry* geometry_out = nullptr) {
+  RTCScene bvh = rtcNewScene(device);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (refit) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+  copy_vertices(mesh, static_cast<float*>(rtcSetNewGeometryBuffer(
+                          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                          3 * sizeof(float), mesh.vertices.size())));
   auto* indices = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(unsigned), mesh.triangles.size()));
@@ -43,6 +62,7 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked)
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(bvh, geometry);
+  if (geometry_out) *geometry_out = geometry;
   rtcReleaseGeometry(geometry);
   rtcCommitScene(bvh);
   return bvh;
@@ -95,17 +115,37 @@ void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& pack
   }
 }
 
-void require_valid_materials(const Mesh& mesh, std::size_t material_count,
+void require_valid_materials(const MeshRef& ref, std::size_t material_count,
                              const std::string& name) {
+  const Mesh& mesh = *ref.rest;
   if (!mesh.materials.empty() && mesh.materials.size() != mesh.triangles.size())
     throw std::invalid_argument(name + ": needs one material per triangle (or none)");
+  const std::size_t slots = ref.slots && !ref.slots->empty() ? ref.slots->size() : material_count;
   for (std::uint16_t m : mesh.materials)
-    if (m >= material_count) throw std::invalid_argument(name + ": material index out of range");
+    if (m >= slots) throw std::invalid_argument(name + ": material index out of range");
+  if (mesh.materials.empty() && slots == 0)
+    throw std::invalid_argument(name + ": material index out of range");
+  if (ref.slots)
+    for (std::uint16_t m : *ref.slots)
+      if (m >= material_count) throw std::invalid_argument(name + ": material index out of range");
 }
 
-bool has_alpha_mask(const Mesh& mesh, const std::vector<Material>& materials) {
-  return std::any_of(mesh.materials.begin(), mesh.materials.end(),
-                     [&](std::uint16_t m) { return materials[m].images.alpha_cutoff >= 0; });
+bool has_alpha_mask(const MeshRef& ref, const std::vector<Material>& materials) {
+  for (unsigned t = 0; t < ref.rest->triangles.size(); ++t)
+    if (materials[material_of(ref, t)].images.alpha_cutoff >= 0) return true;
+  return false;
+}
+
+bool has_window(const MeshRef& ref, const std::vector<Material>& materials) {
+  for (unsigned t = 0; t < ref.rest->triangles.size(); ++t)
+    if (materials[material_of(ref, t)].kind == Material::Kind::Window) return true;
+  return false;
+}
+
+Vec3 point_on(const Mesh& mesh, unsigned triangle, double u, double v) {
+  const Eigen::Vector3i& tri = mesh.triangles[triangle];
+  return (1 - u - v) * mesh.vertices[tri[0]].cast<double>() +
+         u * mesh.vertices[tri[1]].cast<double>() + v * mesh.vertices[tri[2]].cast<double>();
 }
 
 }  // namespace
@@ -114,39 +154,79 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     : scene_(scene), coverage_(coverage) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("cannot create an Embree device");
-  meshes_.push_back({&scene.world});
+  meshes_.push_back({&scene.world, &scene.world});
   for (std::size_t a = 0; a < scene.actors.size(); ++a)
-    for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p)
-      meshes_.push_back({&scene.actors[a].parts[p].mesh, int(a), int(p), scene.actors[a].instance,
-                         scene.actors[a].color_only});
+    for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p) {
+      const Part& part = scene.actors[a].parts[p];
+      if (!part.mesh) throw std::invalid_argument(mesh_name({nullptr, nullptr, int(a), int(p)}) +
+                                                  ": has no mesh");
+      MeshRef ref{part.mesh.get(), part.mesh.get(), int(a), int(p), scene.actors[a].instance,
+                  scene.actors[a].color_only, &part.materials, part.on_rig};
+      if (part.bones) ref.skinned = int(skinned_.size()), skinned_.push_back(meshes_.size());
+      meshes_.push_back(ref);
+    }
   masked_.reserve(meshes_.size());
-  for (const MeshRef& ref : meshes_) {
-    require_valid_mesh(*ref.mesh, mesh_name(ref));
-    require_valid_materials(*ref.mesh, scene.materials.size(), mesh_name(ref));
-    const bool masked = coverage && has_alpha_mask(*ref.mesh, scene.materials);
-    if (masked) masked_.push_back({ref.mesh, coverage});
-    bvhs_.push_back(build_bvh(device_, *ref.mesh, masked ? &masked_.back() : nullptr));
+  std::map<std::pair<const Mesh*, const std::vector<std::uint16_t>*>, RTCScene> built;
+  for (MeshRef& ref : meshes_) {
+    require_valid_mesh(*ref.rest, mesh_name(ref));
+    require_valid_materials(ref, scene.materials.size(), mesh_name(ref));
+    if (ref.skinned >= 0) {
+      const Part& part = scene.actors[ref.actor].parts[ref.part];
+      require_valid_skin(*ref.rest, part.bones(0).size(), mesh_name(ref));
+    }
+    const bool alpha = coverage && has_alpha_mask(ref, scene.materials),
+               masked = alpha || has_window(ref, scene.materials);
+    if (masked) masked_.push_back({&ref, alpha ? coverage : nullptr, &scene.materials});
+    if (ref.skinned >= 0) {
+      bvhs_.push_back(nullptr);
+      continue;
+    }
+    // shared by every part showing the mesh (one whose alpha mask depends on its materials: its
+    // own; windows are taken to be windows in every part showing a mesh, as the models' are)
+    auto& bvh = built[{ref.rest, alpha ? ref.slots : nullptr}];
+    if (!bvh) bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr, false);
+    else rtcRetainScene(bvh);
+    bvhs_.push_back(bvh);
   }
-  now_.top = instances();
+  now_ = posed_scene();
+  for (unsigned k = 0; k < skinned_.size(); ++k) meshes_[skinned_[k]].mesh = &now_.deformed[k].mesh;
 }
 
 EmbreeScene::~EmbreeScene() {
-  rtcReleaseScene(now_.top);
-  for (const PosedScene& target : targets_) rtcReleaseScene(target.top);
-  for (RTCScene s : bvhs_) rtcReleaseScene(s);
+  release(now_);
+  for (PosedScene& target : targets_) release(target);
+  for (RTCScene s : bvhs_)
+    if (s) rtcReleaseScene(s);
   rtcReleaseDevice(device_);
 }
 
-RTCScene EmbreeScene::instances() const {
-  RTCScene top = rtcNewScene(device_);
-  for (unsigned m = 0; m < bvhs_.size(); ++m) {
+void EmbreeScene::release(PosedScene& scene) {
+  rtcReleaseScene(scene.top);
+  for (Deformed& d : scene.deformed) rtcReleaseScene(d.bvh);
+}
+
+// A top-level scene instancing every BVH (skinned parts: BVHs of its own, posed with it).
+EmbreeScene::PosedScene EmbreeScene::posed_scene() {
+  PosedScene posed;
+  posed.top = rtcNewScene(device_);
+  for (unsigned k = 0; k < skinned_.size(); ++k) {
+    const MeshRef& ref = meshes_[skinned_[k]];
+    const auto masked = std::find_if(masked_.begin(), masked_.end(),
+                                     [&](const MaskedMesh& m) { return m.ref == &ref; });
+    Deformed d{*ref.rest};
+    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, true,
+                      &d.geometry);
+    posed.deformed.push_back(std::move(d));
+  }
+  for (unsigned m = 0; m < meshes_.size(); ++m) {
     RTCGeometry instance = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(instance, bvhs_[m]);
+    const int k = meshes_[m].skinned;
+    rtcSetGeometryInstancedScene(instance, k < 0 ? bvhs_[m] : posed.deformed[k].bvh);
     rtcSetGeometryMask(instance, meshes_[m].color_only ? kColorOnlyMask : kSceneMask);
-    rtcAttachGeometryByID(top, instance, m);
+    rtcAttachGeometryByID(posed.top, instance, m);
     rtcReleaseGeometry(instance);
   }
-  return top;
+  return posed;
 }
 
 Pose EmbreeScene::pose_at(unsigned mesh, double t) const {
@@ -158,8 +238,18 @@ Pose EmbreeScene::pose_at(unsigned mesh, double t) const {
 
 bool EmbreeScene::pose(PosedScene& scene, double t) const {
   if (scene.posed && scene.time == t) return false;
-  scene.poses.resize(bvhs_.size());
-  for (unsigned m = 0; m < bvhs_.size(); ++m) {
+  scene.poses.resize(meshes_.size());
+  tbb::parallel_for(std::size_t(0), skinned_.size(), [&](std::size_t k) {
+    const MeshRef& ref = meshes_[skinned_[k]];
+    Deformed& d = scene.deformed[k];
+    skin(*ref.rest, scene_.actors[ref.actor].parts[ref.part].bones(t), d.mesh);
+    copy_vertices(d.mesh, static_cast<float*>(
+                              rtcGetGeometryBufferData(d.geometry, RTC_BUFFER_TYPE_VERTEX, 0)));
+    rtcUpdateGeometryBuffer(d.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(d.geometry);
+    rtcCommitScene(d.bvh);
+  });
+  for (unsigned m = 0; m < meshes_.size(); ++m) {
     scene.poses[m] = pose_at(m, t);
     const Eigen::Matrix<float, 3, 4> transform = scene.poses[m].matrix().topRows<3>().cast<float>();
     RTCGeometry instance = rtcGetGeometry(scene.top, m);
@@ -176,8 +266,22 @@ void EmbreeScene::set_times(double now, const std::vector<double>& targets) {
     inverse_now_.resize(now_.poses.size());
     for (std::size_t m = 0; m < now_.poses.size(); ++m) inverse_now_[m] = now_.poses[m].inverse();
   }
-  while (targets_.size() < targets.size()) targets_.push_back({instances()});
+  while (targets_.size() < targets.size()) targets_.push_back(posed_scene());
   for (std::size_t k = 0; k < targets.size(); ++k) pose(targets_[k], targets[k]);
+}
+
+Vec3 EmbreeScene::point_at_target(int target, const Hit& hit, const Vec3& point) const {
+  const int k = meshes_[hit.mesh].skinned;
+  const Pose& then = pose_at_target(target, hit.mesh);
+  if (k < 0) return then * (inverse_now_[hit.mesh] * point);
+  return then * point_on(targets_[std::size_t(target)].deformed[std::size_t(k)].mesh,
+                         hit.triangle, hit.u, hit.v);
+}
+
+Vec3 EmbreeScene::pattern_point(const Hit& hit, const Vec3& point) const {
+  const MeshRef& ref = meshes_[hit.mesh];
+  if (ref.skinned < 0) return inverse_now_[hit.mesh] * point;
+  return point_on(*ref.rest, hit.triangle, hit.u, hit.v);
 }
 
 Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
@@ -235,7 +339,7 @@ void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) cons
   rtcInitIntersectContext(&context);
   alignas(64) RTCRay16 packet;
   alignas(64) int valid[kBundleSize];
-  fill_packet(rays, count, kSceneMask, packet, valid);
+  fill_packet(rays, count, kSceneMask | kSunMask, packet, valid);
   rtcOccluded16(valid, now_.top, &context, &packet);
   for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Internal: a Scene in Embree. One BVH per mesh, built once; two top-level scenes instance every
-// BVH, posed at the two times of a frame pair.
+// Internal: a Scene in Embree. One BVH per rigid mesh, built once and shared by every part that
+// shows the mesh; one per skinned part and posed time, refitted when that time changes. Top-level
+// scenes instance them, posed at the frame's time and at each target time of its ground truth.
 #include <embree3/rtcore.h>
 
 #include <limits>
@@ -14,15 +15,24 @@ namespace flowscape {
 
 // One mesh of the scene: the static world (actor < 0) or one part of an actor.
 struct MeshRef {
-  const Mesh* mesh;
+  const Mesh* mesh;            // what rays hit at `now` (a skinned part: its mesh posed then)
+  const Mesh* rest = nullptr;  // the part's own mesh (skinned: its rest pose; patterns stick to it)
   int actor = -1, part = -1;
   std::uint16_t instance = 0;
   bool color_only = false;
+  const std::vector<std::uint16_t>* slots = nullptr;  // the part's materials (empty: the mesh's)
+  bool on_rig = false;                                 // Part::on_rig
+  int skinned = -1;  // index of the part among the skinned ones, or -1 (rigid)
 };
+// The scene material a mesh's triangle is drawn with.
+inline std::uint16_t material_of(const MeshRef& ref, unsigned triangle) {
+  const std::uint16_t slot = ref.mesh->materials.empty() ? 0 : ref.mesh->materials[triangle];
+  return ref.slots && !ref.slots->empty() ? (*ref.slots)[slot] : slot;
+}
 
 // Embree ray masks: ground-truth and shadow rays see the scene, colour rays also the colour-only
-// actors (rain streaks, puddles).
-constexpr unsigned kSceneMask = 1, kColorOnlyMask = 2;
+// actors (rain streaks, puddles); the sun's shadow rays carry kSunMask too and pass windows.
+constexpr unsigned kSceneMask = 1, kColorOnlyMask = 2, kSunMask = 4;
 
 // A ray of a bundle traced together; lanes that are not active are skipped.
 struct BundleRay {
@@ -44,13 +54,16 @@ struct Hit {
 class CoverageTest {
  public:
   virtual ~CoverageTest() = default;
-  virtual bool covered(const Mesh& mesh, unsigned triangle, float u, float v) const = 0;
+  virtual bool covered(std::uint16_t material, const Mesh& mesh, unsigned triangle, float u,
+                       float v) const = 0;
 };
 
-// What Embree's filter function of a masked mesh gets.
+// What Embree's filter function of a mesh with alpha masks or windows gets (coverage: null for
+// windows only).
 struct MaskedMesh {
-  const Mesh* mesh;
+  const MeshRef* ref;
   const CoverageTest* coverage;
+  const std::vector<Material>* materials;
 };
 
 class EmbreeScene {
@@ -74,6 +87,14 @@ class EmbreeScene {
   void intersect(const BundleRay* rays, int count, Hit* hits) const;
   void occluded(const BundleRay* rays, int count, bool* blocked) const;
 
+  // Where the surface point `point` (on `hit`, at `now`) is at target `target` of set_times, in
+  // the world: a rigid part's point moves with the part; a skinned one is the same barycentric
+  // combination of its triangle's vertices posed then.
+  Vec3 point_at_target(int target, const Hit& hit, const Vec3& point) const;
+  // The hit point in the frame procedural patterns use: the object frame of a rigid part, the rest
+  // pose of a skinned one.
+  Vec3 pattern_point(const Hit& hit, const Vec3& point) const;
+
   // Poses at the times of set_times (evaluated once per call there, not per ray).
   const Pose& pose_now(unsigned mesh) const { return now_.poses[mesh]; }
   const Pose& world_to_object_now(unsigned mesh) const { return inverse_now_[mesh]; }
@@ -84,21 +105,31 @@ class EmbreeScene {
   const Scene& scene() const { return scene_; }
 
  private:
+  // A skinned part's mesh and BVH at one posed time.
+  struct Deformed {
+    Mesh mesh;  // vertices (and normals, tangents) skinned at the scene's time
+    RTCScene bvh = nullptr;
+    RTCGeometry geometry = nullptr;
+  };
   // A top-level scene instancing every BVH, posed at `time`.
   struct PosedScene {
     RTCScene top = nullptr;
     std::vector<Pose> poses{};
+    std::vector<Deformed> deformed{};  // one per skinned part
     double time = 0;
     bool posed = false;
   };
-  RTCScene instances() const;
+  PosedScene posed_scene();
   Pose pose_at(unsigned mesh, double t) const;
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
+  void release(PosedScene& scene);
+  RTCScene shared_bvh(const MeshRef& ref);
 
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
-  std::vector<RTCScene> bvhs_;
+  std::vector<RTCScene> bvhs_;      // per mesh: its shared BVH (null for skinned parts)
+  std::vector<unsigned> skinned_;   // the meshes that are skinned parts
   std::vector<MaskedMesh> masked_;  // reserved up front: Embree keeps pointers into it
   PosedScene now_;
   std::vector<PosedScene> targets_;  // grown as requests need, never shrunk

@@ -65,10 +65,10 @@ void ImageTextures::lookup(int id, const Vec2& uv, double footprint, int channel
     throw FileError(paths_[id], "texture lookup failed: " + system_->geterror());
 }
 
-bool ImageTextures::covered(const Mesh& mesh, unsigned triangle, float u, float v) const {
-  const Material& material =
-      scene_.materials[mesh.materials.empty() ? 0 : mesh.materials[triangle]];
-  const int id = ids_[mesh.materials.empty() ? 0 : mesh.materials[triangle]].base_color;
+bool ImageTextures::covered(std::uint16_t material_index, const Mesh& mesh, unsigned triangle,
+                            float u, float v) const {
+  const Material& material = scene_.materials[material_index];
+  const int id = ids_[material_index].base_color;
   if (material.images.alpha_cutoff < 0 || id < 0) return true;
   float rgba[4];  // called inside Embree: a failed lookup (reported when shading) covers
   if (!try_lookup(id, interpolated_uv(mesh, triangle, u, v), 0, 4, rgba)) return true;

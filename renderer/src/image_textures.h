@@ -30,7 +30,8 @@ class ImageTextures : public CoverageTest {
   const std::string& path(int id) const { return paths_[id]; }
 
   // Alpha masks: the base colour's alpha at the hit against the material's cutoff.
-  bool covered(const Mesh& mesh, unsigned triangle, float u, float v) const override;
+  bool covered(std::uint16_t material, const Mesh& mesh, unsigned triangle, float u,
+               float v) const override;
 
  private:
   int open(const std::string& path);

@@ -128,6 +128,17 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
     return true;
   }
   const bool first = path.layer == kOther;
+  if (m.kind == Material::Kind::Window) {
+    // the sky it mirrors (both faces' Fresnel reflection, taken whole rather than sampled: a
+    // window would speckle otherwise), and straight through, tinted, to what lies behind: the
+    // first surface then
+    const double f = schlick(std::abs(dir.dot(s.normal)), 0.04), reflected = 2 * f / (1 + f);
+    path.light[first ? kSpecular : path.layer] +=
+        throughput.cwiseProduct(lights.sky_radiance(reflect(dir, s.normal))) * reflected;
+    throughput = throughput.cwiseProduct(s.albedo) * (1 - reflected);
+    origin = s.position + offset * dir;
+    return true;
+  }
   if (first) path.normal += s.smooth;
   if (m.kind == Material::Kind::Emissive) {
     path.light[path.layer] += throughput.cwiseProduct(m.emission.cast<double>());

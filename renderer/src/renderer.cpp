@@ -73,11 +73,15 @@ TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec
   Vec3 target_direction = direction;  // world frame, seen from the rig at the target's time
   double target_distance = std::numeric_limits<double>::infinity();
   if (hit.found) {
-    truth.moved =
-        c.scene.pose_at_target(k, hit.mesh) * (c.scene.world_to_object_now(hit.mesh) * point);
+    truth.moved = c.scene.point_at_target(k, hit, point);
     target_direction = truth.moved - target_origin;
     target_distance = target_direction.norm();
     target_direction /= target_distance;
+  }
+  if (hit.found && c.request.camera_on_rig && c.scene.mesh(hit.mesh).on_rig) {
+    truth.u = truth.v = 0;  // fixed to the camera: seen at the same pixel then, exactly
+    truth.valid = !c.scene.occluded(k, target_origin, target_direction, target_distance);
+    return truth;
   }
   const auto projected = c.projection.project(target.rig.linear().transpose() * target_direction);
   if (!projected) return truth;

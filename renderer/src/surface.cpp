@@ -11,8 +11,7 @@ double srgb_to_linear(double c) {
 }
 
 std::size_t material_index(const EmbreeScene& embree, const Hit& hit) {
-  const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
-  return mesh.materials.empty() ? 0 : mesh.materials[hit.triangle];
+  return material_of(embree.mesh(hit.mesh), hit.triangle);
 }
 
 const Material& material_of(const EmbreeScene& embree, const Hit& hit) {
@@ -91,6 +90,11 @@ TexturedLook textured_look(const EmbreeScene& embree, const ImageTextures& image
   const Material& m = material_of(embree, hit);
   const Vec3 local = embree.world_to_object_now(hit.mesh) * point;
   const Vec2 b = barycentric(mesh, tri, local);
+  const Vec3 fixed = embree.mesh(hit.mesh).skinned < 0
+                         ? local
+                         : embree.pattern_point({true, hit.mesh, hit.triangle, hit.distance,
+                                                 hit.normal, float(b.x()), float(b.y())},
+                                                point);
   const Vec2 uv = interpolated_uv(mesh, hit.triangle, b.x(), b.y());
   const UvFrame frame = uv_frame(mesh, tri);
   // the cone's footprint on the surface, lengthened by the slant (the geometric mean of the
@@ -100,7 +104,7 @@ TexturedLook textured_look(const EmbreeScene& embree, const ImageTextures& image
   const double uv_footprint = footprint / std::sqrt(slant) * frame.uv_per_metre;
   TexturedLook look{m.albedo.cast<double>(), m.roughness};
   if (m.pattern) {
-    const SurfaceLook result = (*m.pattern)({uv, local, uv_footprint}, {m.albedo, m.roughness});
+    const SurfaceLook result = (*m.pattern)({uv, fixed, uv_footprint}, {m.albedo, m.roughness});
     look.albedo = result.albedo.cast<double>(), look.roughness = result.roughness;
     look.slope = result.slope * frame.uv_per_metre;
   }

@@ -3,17 +3,14 @@
 #include <array>
 #include <limits>
 
+#include "flowscape/scenes/skinning.h"
+
 namespace flowscape {
 
 Box3 actor_box(const Actor& actor, double t) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Part& part : actor.parts) {
-    const Pose in_actor = part.pose(t);
-    for (const Eigen::Vector3f& vertex : part.mesh.vertices) {
-      const Vec3 p = in_actor * vertex.cast<double>();
-      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    }
-  }
+  for (const Part& part : actor.parts)
+    for (const Vec3& p : part_vertices_at(part, t)) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   if (!(lo.array() <= hi.array()).all()) return {actor.pose(t), Vec3::Zero()};  // no vertices
   Box3 box;
   box.pose = actor.pose(t) * Eigen::Translation3d((lo + hi) / 2);
@@ -31,7 +28,7 @@ Motion actor_motion(const Actor& actor, double t, const Vec3& local) {
 SemanticClass actor_class(const Actor& actor) {
   std::array<std::size_t, 256> counts{};
   for (const Part& part : actor.parts)
-    for (SemanticClass c : part.mesh.classes) ++counts[std::size_t(c)];
+    for (SemanticClass c : part.mesh->classes) ++counts[std::size_t(c)];
   std::size_t best = 0;
   for (std::size_t c = 1; c < counts.size(); ++c)
     if (counts[c] > counts[best]) best = c;

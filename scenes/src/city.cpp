@@ -18,7 +18,8 @@ namespace {
 
 constexpr int kStartPoints = 110, kMaxActors = 200;
 constexpr double kFrame = 1 / kFrameRate;
-const char* const kKindNames[] = {"car", "truck", "bus", "bike", "pedestrian"};
+const char* const kKindNames[] = {"car",        "truck", "bus",       "bike",
+                                  "pedestrian", "lorry", "motorbike", "rider"};
 
 // A start on `lane`, s metres along it, heading along the lane, on the ground.
 StartPoint start_at(const Layout& layout, int lane, double s) {
@@ -46,12 +47,17 @@ std::vector<StartPoint> start_points(const Layout& layout) {
   return points;
 }
 
-ActorKind vehicle_kind(const Style& style, Random& random) {
+// Detailed actors split trucks into box trucks and lorries, bikes into bicycles and motorbikes,
+// by a hash of the vehicle's number (the random stream stays that of legacy releases).
+ActorKind vehicle_kind(const Style& style, const CityConfig& config, int n, Random& random) {
   const double u = random.uniform();
-  const double trucks = style.buildings == Style::Buildings::Warehouses ? 0.25 : 0.08;
-  if (u < trucks) return ActorKind::Truck;
+  const bool warehouses = style.buildings == Style::Buildings::Warehouses;
+  const double trucks = warehouses ? 0.25 : 0.08;
+  const bool detailed = config.actors == ActorStyle::Detailed;
+  const double split = tex::hash01(std::uint64_t(n), config.seed ^ 0x6b696e64ull);  // "kind"
+  if (u < trucks) return detailed && split < (warehouses ? 0.5 : 0.3) ? ActorKind::Lorry : ActorKind::Truck;
   if (u < trucks + 0.07) return ActorKind::Bus;
-  if (u < trucks + 0.07 + 0.12) return ActorKind::Bike;
+  if (u < trucks + 0.07 + 0.12) return detailed && split < 0.4 ? ActorKind::Motorbike : ActorKind::Bike;
   return ActorKind::Car;
 }
 
@@ -105,7 +111,7 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
   const double clear = config.ego_route == EgoRoute::Free ? 0 : kEgoClearAhead;
   const Eigen::Vector2d ego_spot = layout.lanes[ego.lane].path.at(ego.s).position;
   for (int n = 0; n < config.vehicles; ++n) {
-    const ActorKind kind = vehicle_kind(layout.style, random);
+    const ActorKind kind = vehicle_kind(layout.style, config, n, random);
     const KindSize size = kind_size(kind);
     const double wish = kind == ActorKind::Bike ? random.uniform(5, 8) : random.uniform(8, 25);
     bool placed = false;
@@ -166,10 +172,11 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
 }
 
 // Cars parked in the shoulder along the kerb, right of the outer lane of two-way streets (not
-// within 12 m of a junction, not on three-lane roads), 40 % of the slots taken: baked into the
-// static world, their footprints among the solids moving actors keep clear of.
-void park_cars(const Layout& layout, const std::map<ActorKind, Mesh>& models, std::uint64_t seed,
-               City& city) {
+// within 12 m of a junction, not on three-lane roads), 40 % of the slots taken, each handed to
+// `place` (with the parking stream, which legacy models draw their looks from), their footprints
+// among the solids moving actors keep clear of.
+void park_cars(const Layout& layout, std::uint64_t seed, City& city,
+               const std::function<void(const Pose&, Random&)>& place) {
   const KindSize car = kind_size(ActorKind::Car);
   if (layout.style.shoulder < car.width + 0.1) return;
   Random random(mix_bits(seed ^ 0x7061726bull));  // "park": its own stream
@@ -178,7 +185,6 @@ void park_cars(const Layout& layout, const std::map<ActorKind, Mesh>& models, st
     int& index = outer[{lane.from, lane.to}];
     index = std::max(index, lane.index);
   }
-  const auto model = models.find(ActorKind::Car);
   for (const Lane& lane : layout.lanes) {
     if (lane.index != outer[{lane.from, lane.to}] || lane.index >= 2) continue;
     const double kerb = kLaneWidth / 2 + layout.style.shoulder / 2;  // from the lane's centre
@@ -189,8 +195,7 @@ void park_cars(const Layout& layout, const std::map<ActorKind, Mesh>& models, st
       const Eigen::Vector2d right(p.direction.y(), -p.direction.x()),
           at = p.position + kerb * right;
       const Pose pose = ground_pose(layout, {at, p.direction, 0}, 0);
-      add_parked_vehicle(ActorKind::Car, pose, model == models.end() ? nullptr : &model->second,
-                         random, city.scene);
+      place(pose, random);
       const Eigen::Vector2d along = p.direction * car.length / 2, side = right * car.width / 2;
       city.solids.push_back(
           {at - along - side, at + along - side, at + along + side, at - along + side});
@@ -285,13 +290,24 @@ EgoRoute route_from_name(const std::string& name) {
 
 std::string map_name(int map) { return style_of(map).name; }
 
+std::string style_name(ActorStyle style) {
+  return style == ActorStyle::Legacy ? "legacy" : "detailed";
+}
+
+ActorStyle style_from_name(const std::string& name) {
+  for (ActorStyle style : {ActorStyle::Legacy, ActorStyle::Detailed})
+    if (name == style_name(style)) return style;
+  throw std::invalid_argument("unknown actor style \"" + name + "\" (detailed or legacy)");
+}
+
 std::string kind_name(ActorKind kind) { return kKindNames[int(kind)]; }
 
 ActorKind kind_from_name(const std::string& name) {
   for (int k = 0; k < int(std::size(kKindNames)); ++k)
     if (name == kKindNames[k]) return ActorKind(k);
-  throw std::invalid_argument("unknown actor kind \"" + name +
-                              "\" (car, truck, bus, bike or pedestrian)");
+  throw std::invalid_argument(
+      "unknown actor kind \"" + name +
+      "\" (car, truck, bus, bike, pedestrian, lorry, motorbike or rider)");
 }
 
 void validate(const CityConfig& c) {
@@ -306,7 +322,9 @@ void validate(const CityConfig& c) {
     throw std::invalid_argument("ego start " + std::to_string(c.ego_start) + " is not in 0..99");
   if (!(c.duration > 0 && c.duration <= 3600))
     throw std::invalid_argument("duration must be in (0, 3600] seconds");
-  for (const auto& entry : c.models) kind_from_name(entry.first);
+  for (const auto& entry : c.models)
+    if (kind_from_name(entry.first) == ActorKind::Rider)
+      throw std::invalid_argument("riders take no user model (a bike's model is \"bike\")");
 }
 
 Pose City::rig(double t) const { return rig_track()(t); }
@@ -335,6 +353,86 @@ PoseTrack City::rig_track() const {
   };
 }
 
+namespace {
+
+const Mesh* user_model_of(const std::map<ActorKind, Mesh>& models, ActorKind kind) {
+  const auto model = models.find(kind);
+  return model == models.end() ? nullptr : &model->second;
+}
+
+// flowscape 0.9's actors, in its order and from its random stream.
+void add_legacy_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
+                       Random& random, City& city) {
+  const Spawned& spawned = traffic.spawned;
+  const auto add = [&](ActorKind kind, const Track& track, int lane, double s, double speed) {
+    const auto instance = std::uint16_t(city.scene.actors.size() + 1);
+    city.scene.actors.push_back(legacy_actor(kind, instance, std::make_shared<const Track>(track),
+                                             user_model_of(models, kind), random, city.scene));
+    city.actors.push_back({instance, kind, lane, s, speed});
+  };
+  for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
+    const VehicleStart& start = spawned.vehicles[v];
+    add(spawned.vehicle_kinds[v - 1], traffic.tracks.vehicles[v], start.lane, start.s, start.speed);
+  }
+  for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
+    const WalkerStart& start = spawned.walkers[w];
+    add(ActorKind::Pedestrian, traffic.tracks.walkers[w], start.loop, start.s, start.speed);
+  }
+}
+
+// The detailed actors: traffic (two-wheelers with their riders), walkers (one in eight of those in
+// groups a child), the parked cars and the ego vehicle, instances in that order.
+void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
+                         const std::vector<Pose>& parked, City& city) {
+  const CityConfig& config = city.config;
+  ActorLibrary library(city.scene, config.seed, config.wet);
+  const Spawned& spawned = traffic.spawned;
+  const auto next = [&] { return std::uint16_t(city.scene.actors.size() + 1); };
+  const auto add = [&](std::vector<Actor> actors, ActorRecord record) {
+    for (Actor& actor : actors) {
+      city.actors.push_back(record);
+      city.scene.actors.push_back(std::move(actor));
+      record = {next(), ActorKind::Rider, record.lane, record.s, record.speed};
+    }
+  };
+  for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
+    const VehicleStart& start = spawned.vehicles[v];
+    const ActorKind kind = spawned.vehicle_kinds[v - 1];
+    const auto track = std::make_shared<const Track>(traffic.tracks.vehicles[v]);
+    add(library.vehicle(kind, next(), track, user_model_of(models, kind)),
+        {next(), kind, start.lane, start.s, start.speed});
+  }
+  for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
+    const WalkerStart& start = spawned.walkers[w];
+    const bool grouped = (w > 0 && spawned.walkers[w - 1].loop == start.loop &&
+                          spawned.walkers[w - 1].speed == start.speed) ||
+                         (w + 1 < spawned.walkers.size() && spawned.walkers[w + 1].loop == start.loop &&
+                          spawned.walkers[w + 1].speed == start.speed);
+    const bool child = grouped && tex::hash01(std::uint64_t(w), config.seed ^ 0x6368696c64ull) < 0.35;
+    const auto track = std::make_shared<const Track>(traffic.tracks.walkers[w]);
+    add({library.pedestrian(next(), track, start.speed, child,
+                            user_model_of(models, ActorKind::Pedestrian))},
+        {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed});
+  }
+  for (const Pose& pose : parked) {
+    const auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
+    ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
+    record.parked = true;
+    add(library.vehicle(ActorKind::Car, next(), still, user_model_of(models, ActorKind::Car)),
+        record);
+  }
+  if (!config.draw_ego) return;
+  ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};
+  record.ego = true;
+  city.ego_instance = record.instance;
+  add({library.ego(record.instance, city.rig_track(),
+                   std::make_shared<const Track>(traffic.tracks.vehicles[0]), city.mount.height,
+                   config.ego_cameras)},
+      record);
+}
+
+}  // namespace
+
 City make_city(const CityConfig& config) {
   validate(config);
   auto layout = std::make_shared<const Layout>(make_layout(config.map, config.seed));
@@ -342,51 +440,47 @@ City make_city(const CityConfig& config) {
   city.config = config;
   city.solids = build_world(*layout, config.seed, city.scene);
   const std::map<ActorKind, Mesh> models = user_models(config, city.scene);
-  park_cars(*layout, models, config.seed, city);
+  const bool legacy = config.actors == ActorStyle::Legacy;
+  std::vector<Pose> parked;
+  park_cars(*layout, config.seed, city, [&](const Pose& pose, Random& random) {
+    if (legacy)
+      add_legacy_parked_vehicle(ActorKind::Car, pose, user_model_of(models, ActorKind::Car), random,
+                                city.scene);
+    else
+      parked.push_back(pose);
+  });
   city.start_points = start_points(*layout);
   city.area_at = [layout](const Eigen::Vector2d& p) { return layout->area(p); };
   city.ground_height = [layout](const Eigen::Vector2d& p) { return layout->height(p); };
   const std::vector<SidewalkLoop> loops = sidewalk_loops(*layout);
   PlacedTraffic traffic = place_traffic(*layout, loops, city.start_points, config);
   city.ego_spawn = traffic.ego, city.ego_tries = traffic.tries;
-  Random& random = traffic.random;
-  const Spawned& spawned = traffic.spawned;
-  const std::vector<Track>&vehicle_tracks = traffic.tracks.vehicles,
-        &walker_tracks = traffic.tracks.walkers;
-  const auto ego = std::make_shared<const Track>(vehicle_tracks[0]);
+  const auto ego = std::make_shared<const Track>(traffic.tracks.vehicles[0]);
   city.ego = [ego](double t) { return ego->pose(t); };
   city.ego_distance = [ego](double t) { return ego->distance_at(t); };
   city.mount = random_mount(config.seed);
-  const auto add = [&](ActorKind kind, const Track& track, int lane, double s, double speed) {
-    const auto instance = std::uint16_t(city.scene.actors.size() + 1);
-    const auto model = models.find(kind);
-    city.scene.actors.push_back(make_actor(kind, instance, std::make_shared<const Track>(track),
-                                           model == models.end() ? nullptr : &model->second, random,
-                                           city.scene));
-    city.actors.push_back({instance, kind, lane, s, speed});
-  };
-  for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
-    const VehicleStart& start = spawned.vehicles[v];
-    add(spawned.vehicle_kinds[v - 1], vehicle_tracks[v], start.lane, start.s, start.speed);
-  }
-  for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
-    const WalkerStart& start = spawned.walkers[w];
-    add(ActorKind::Pedestrian, walker_tracks[w], start.loop, start.s, start.speed);
-  }
+  if (legacy)
+    add_legacy_actors(traffic, models, traffic.random, city);
+  else
+    add_detailed_actors(traffic, models, parked, city);
   return city;
 }
 
 nlohmann::json to_json(const City& city) {
   const CityConfig& c = city.config;
   nlohmann::json actors = nlohmann::json::array();
-  for (const ActorRecord& a : city.actors)
-    actors.push_back({{"instance", a.instance},
-                      {"kind", kind_name(a.kind)},
-                      {"lane", a.lane},
-                      {"s", a.s},
-                      {"speed", a.speed}});
+  for (const ActorRecord& a : city.actors) {
+    nlohmann::json record = {{"instance", a.instance},
+                             {"kind", kind_name(a.kind)},
+                             {"lane", a.lane},
+                             {"s", a.s},
+                             {"speed", a.speed}};
+    if (a.parked) record["parked"] = true;
+    if (a.ego) record["ego"] = true;
+    actors.push_back(record);
+  }
   const StartPoint& ego = city.ego_spawn;
-  return {{"map", c.map},
+  nlohmann::json record = {{"map", c.map},
           {"map_name", map_name(c.map)},
           {"seed", c.seed},
           {"vehicles", c.vehicles},
@@ -399,6 +493,15 @@ nlohmann::json to_json(const City& city) {
           {"ego", {{"lane", ego.lane}, {"s", ego.s}, {"tries", city.ego_tries}}},
           {"start_points", city.start_points.size()},
           {"actors", actors}};
+  if (c.actors == ActorStyle::Legacy) return record;  // the records of flowscape 0.9, unchanged
+  record["actor_style"] = style_name(c.actors);
+  record["wet"] = c.wet;
+  record["ego"]["drawn"] = c.draw_ego;
+  record["ego"]["instance"] = city.ego_instance;
+  nlohmann::json cameras = nlohmann::json::array();
+  for (const Vec3& p : c.ego_cameras) cameras.push_back({p.x(), p.y(), p.z()});
+  record["ego"]["cameras"] = cameras;
+  return record;
 }
 
 CityConfig config_from_json(const nlohmann::json& record) {
@@ -412,6 +515,14 @@ CityConfig config_from_json(const nlohmann::json& record) {
     c.ego_route = route_from_name(record.value("ego_route", "free"));
     c.duration = record.value("duration", 4.0);
     c.models = record.value("models", std::map<std::string, std::string>{});
+    c.actors = style_from_name(record.value("actor_style", "legacy"));
+    c.wet = record.value("wet", false);
+    if (record.contains("ego") && record["ego"].contains("drawn")) {
+      c.draw_ego = record["ego"]["drawn"].get<bool>();
+      c.ego_cameras.clear();
+      for (const auto& p : record["ego"].at("cameras"))
+        c.ego_cameras.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+    }
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("scene record: ") + e.what());
   }

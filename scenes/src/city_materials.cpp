@@ -479,4 +479,127 @@ Material hair(std::uint64_t seed) {
   return m;
 }
 
+Rgb popular_car_colour(std::uint64_t seed) {
+  Random random(mix_bits(seed ^ 0x636f6c6f7572ull));  // "colour"
+  // white, black, grey, silver, blue, red, green, beige, orange
+  static const Rgb kColours[] = {{0.78f, 0.78f, 0.76f}, {0.025f, 0.025f, 0.028f},
+                                 {0.2f, 0.21f, 0.22f},  {0.5f, 0.51f, 0.53f},
+                                 {0.04f, 0.09f, 0.3f},  {0.45f, 0.03f, 0.025f},
+                                 {0.05f, 0.16f, 0.08f}, {0.5f, 0.42f, 0.3f},
+                                 {0.7f, 0.3f, 0.04f}};
+  static const double kShares[] = {0.25, 0.2, 0.18, 0.14, 0.09, 0.08, 0.02, 0.02, 0.02};
+  double u = random.uniform();
+  int k = 0;
+  while (k < 8 && (u -= kShares[k]) > 0) ++k;
+  return varied(random, kColours[k], 0.06);
+}
+
+namespace {
+
+SurfaceLook grimy(const TexturePoint& at, const SurfaceLook& base, std::uint64_t seed,
+                  const Rgb& colour) {
+  const double dirt = smoothstep(0.5, 0.15, at.position.z()) *
+                      (0.5 + 0.5 * fbm(at.uv, seed, 3, 3, at.footprint).value);
+  return SurfaceLook{clamped(mix(colour, Rgb(0.12f, 0.11f, 0.09f), 0.5 * dirt)),
+                     float(base.roughness + 0.3 * dirt), Vec2::Zero()};
+}
+
+}  // namespace
+
+Material body_paint(const Rgb& colour, std::uint64_t seed) {
+  return make(Material::Kind::Glossy, colour, 0.04f,
+              [seed](const TexturePoint& at, const SurfaceLook& base) {
+                return grimy(at, base, seed, base.albedo);
+              });
+}
+
+Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, bool checks,
+                      std::uint64_t seed) {
+  return make(Material::Kind::Glossy, colour, 0.04f,
+              [=](const TexturePoint& at, const SurfaceLook& base) {
+                const double fp = at.footprint, z = at.position.z();
+                double in = line_coverage(z - (z0 + z1) / 2, (z1 - z0) / 2, fp);
+                if (checks)  // two rows of squares, the band's height each half
+                  in *= pulse_train(at.position.x() + (z > (z0 + z1) / 2 ? (z1 - z0) / 2 : 0),
+                                    z1 - z0, (z1 - z0) / 2, fp);
+                return grimy(at, base, seed, mix(base.albedo, band, float(in)));
+              });
+}
+
+Material clear_glass() {
+  Material m;
+  m.kind = Material::Kind::Window, m.albedo = {0.62f, 0.66f, 0.66f}, m.roughness = 0;
+  return m;
+}
+
+Material trim_plastic() {
+  Material m;
+  m.kind = Material::Kind::Glossy, m.albedo = {0.025f, 0.025f, 0.027f}, m.roughness = 0.3f;
+  return m;
+}
+
+Material chrome() {
+  Material m;
+  m.kind = Material::Kind::Metal, m.albedo = {0.7f, 0.7f, 0.72f}, m.roughness = 0.08f;
+  return m;
+}
+
+Material upholstery(std::uint64_t seed) {
+  Random random(seed);
+  Material m;
+  m.albedo = varied(random, {0.05f, 0.05f, 0.05f}, 0.4);
+  return m;
+}
+
+Material underbody() {
+  Material m;
+  m.albedo = {0.03f, 0.03f, 0.03f};
+  return m;
+}
+
+Material grille() {
+  return make(Material::Kind::Glossy, {0.02f, 0.02f, 0.022f}, 0.2f,
+              [](const TexturePoint& at, const SurfaceLook& base) {
+                // horizontal slats with dark gaps (uv in metres over the patch)
+                const double slat = pulse_train(at.uv.y(), 0.03, 0.012, at.footprint);
+                return scaled(base, 0.4 + 1.6 * slat);
+              });
+}
+
+Material shoes(std::uint64_t seed) {
+  Random random(seed);
+  static const Rgb kShoes[] = {{0.02f, 0.02f, 0.02f}, {0.15f, 0.08f, 0.04f},
+                               {0.7f, 0.7f, 0.68f},   {0.08f, 0.08f, 0.12f}};
+  Material m;
+  m.kind = Material::Kind::Glossy, m.roughness = 0.4f;
+  m.albedo = varied(random, kShoes[random.below(4)], 0.1);
+  return m;
+}
+
+Material bag(std::uint64_t seed) {
+  Random random(seed);
+  Material m;
+  m.albedo = varied(random,
+                    {float(random.uniform(0.02, 0.4)), float(random.uniform(0.02, 0.3)),
+                     float(random.uniform(0.02, 0.3))},
+                    0.2);
+  return m;
+}
+
+Material umbrella(std::uint64_t seed) {
+  Random random(seed);
+  static const Rgb kCanopies[] = {{0.02f, 0.02f, 0.02f}, {0.03f, 0.06f, 0.25f},
+                                  {0.4f, 0.03f, 0.03f},  {0.5f, 0.45f, 0.05f}};
+  Material m;
+  m.kind = Material::Kind::Glossy, m.roughness = 0.2f;
+  m.albedo = varied(random, kCanopies[random.below(4)], 0.1);
+  return m;
+}
+
+Material eyes() {
+  Material m;
+  m.albedo = {0.02f, 0.015f, 0.012f};
+  return m;
+}
+
 }  // namespace flowscape::city_materials

@@ -46,4 +46,21 @@ Material clothing(std::uint64_t seed, bool trousers);
 Material skin(std::uint64_t seed);
 Material hair(std::uint64_t seed);
 
+// The detailed vehicles and people (assets/): body paint in today's popular colours with road
+// grime low down, liveries (a band of `band` from z0 to z1 m, police checks), shared trim.
+Rgb popular_car_colour(std::uint64_t seed);
+Material body_paint(const Rgb& colour, std::uint64_t seed);
+Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, bool checks,
+                      std::uint64_t seed);
+Material clear_glass();              // windows you see through (thin, tinted panes)
+Material trim_plastic();             // black bumpers, pillars, seals
+Material chrome();
+Material upholstery(std::uint64_t seed);
+Material underbody();
+Material grille();
+Material shoes(std::uint64_t seed);
+Material bag(std::uint64_t seed);
+Material umbrella(std::uint64_t seed);
+Material eyes();
+
 }  // namespace flowscape::city_materials

@@ -1,186 +1,389 @@
 #include "city_models.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
 
+#include "assets/gait.h"
+#include "assets/people.h"
+#include "assets/vehicles.h"
 #include "city_materials.h"
 #include "flowscape/scenes/shapes.h"
 
 namespace flowscape {
 namespace {
 
-using V3 = Eigen::Vector3d;
-using C = SemanticClass;
-constexpr double kStride = 1.4;
+using namespace assets;
+namespace cm = city_materials;
+using Rgb = city_materials::Rgb;
 
-Pose at(double x, double y, double z) { return Pose(Eigen::Translation3d(x, y, z)); }
+Pose at(const V3& p) { return Pose(Eigen::Translation3d(p)); }
 
-// A wheel of `radius` at `hub` in the actor's frame, turning about its axle with the distance:
-// a tyre and, a millimetre proud of its sidewalls, a rim with spokes.
-Part wheel(const V3& hub, double radius, double width, std::uint16_t tyre, std::uint16_t rim,
-           std::shared_ptr<const Track> track) {
-  Part part;
-  const Pose axle(Eigen::AngleAxisd(kPi / 2, V3::UnitX()));
-  add_cylinder(part.mesh, axle * at(0, 0, -width / 2), radius, width, {C::Vehicles, tyre}, 16);
-  add_cylinder(part.mesh, axle * at(0, 0, -width / 2 - 0.002), 0.62 * radius, width + 0.004,
-               {C::Vehicles, rim}, 16);
-  part.pose = [hub, radius, track](double t) {
-    return Pose(Eigen::Translation3d(hub) *
-                Eigen::AngleAxisd(track->distance_at(t) / radius, V3::UnitY()));
-  };
-  return part;
-}
-
-// A limb hanging from `joint`, swinging about the actor's y axis with the walking cycle.
-Part limb(const V3& joint, const V3& half, double swing, double phase, std::uint16_t material,
-          std::shared_ptr<const Track> track) {
-  Part part;
-  add_oriented_box(part.mesh, at(0, 0, -half.z()), half, {C::Pedestrian, material});
-  part.pose = [joint, swing, phase, track](double t) {
-    const double angle = swing * std::sin(2 * kPi * track->distance_at(t) / kStride + phase);
-    return Pose(Eigen::Translation3d(joint) * Eigen::AngleAxisd(angle, V3::UnitY()));
-  };
-  return part;
-}
-
-// What a vehicle body is painted with.
-struct Livery {
-  std::uint16_t body, glass, head_light, tail_light, plate;
-};
-
-// Head lights at the front, tail lights and a number plate at the back of a body whose front is
-// at x = L, back at x = -L, `low` the height of the lights.
-void lights(Mesh& mesh, double L, double W, double low, const Livery& l) {
-  for (double side : {-1.0, 1.0}) {
-    add_oriented_box(mesh, at(L + 0.005, side * 0.7 * W, low), V3(0.02, 0.16, 0.06),
-                     {C::Vehicles, l.head_light});
-    add_oriented_box(mesh, at(-L - 0.005, side * 0.75 * W, low + 0.05), V3(0.02, 0.12, 0.05),
-                     {C::Vehicles, l.tail_light});
-  }
-  add_oriented_box(mesh, at(-L - 0.01, 0, low - 0.1), V3(0.01, 0.26, 0.055),
-                   {C::Vehicles, l.plate});
-}
-
-Mesh vehicle_body(ActorKind kind, const Livery& l) {
-  Mesh mesh;
-  const KindSize size = kind_size(kind);
-  const double L = size.length / 2, W = size.width / 2;
-  const std::uint16_t body = l.body, glass = l.glass;
+// The family a vehicle of `kind` is drawn as, and its livery.
+std::pair<Family, Livery> family_of(ActorKind kind, Random& random) {
   switch (kind) {
-    case ActorKind::Car:
-      add_oriented_box(mesh, at(0, 0, 0.7), V3(L, W, 0.35), {C::Vehicles, body});
-      add_oriented_box(mesh, at(-0.15 * L, 0, 1.3), V3(0.55 * L, 0.92 * W, 0.27),
-                       {C::Vehicles, glass});
-      lights(mesh, L, W, 0.75, l);
-      break;
-    case ActorKind::Truck:
-      add_oriented_box(mesh, at(0.78 * L, 0, 1.5), V3(0.22 * L, W, 0.95), {C::Vehicles, body});
-      add_oriented_box(mesh, at(0.92 * L, 0, 2.0), V3(0.09 * L, 0.95 * W, 0.4),
-                       {C::Vehicles, glass});
-      add_oriented_box(mesh, at(-0.22 * L, 0, 2.0), V3(0.76 * L, W, 1.4), {C::Vehicles, body});
-      lights(mesh, L, W, 0.8, l);
-      break;
-    case ActorKind::Bus:
-      add_oriented_box(mesh, at(0, 0, 1.7), V3(L, W, 1.3), {C::Vehicles, body});
-      add_oriented_box(mesh, at(0, 0, 2.0), V3(0.98 * L, 1.01 * W, 0.45), {C::Vehicles, glass});
-      lights(mesh, L, W, 0.7, l);
-      break;
-    case ActorKind::Bike:
-      add_oriented_box(mesh, at(0, 0, 0.75), V3(0.6, 0.12, 0.2), {C::Vehicles, body});
-      add_oriented_box(mesh, at(-0.1, 0, 1.25), V3(0.2, 0.2, 0.35), {C::Vehicles, glass});
-      add_oriented_box(mesh, at(-0.05, 0, 1.72), V3(0.12, 0.12, 0.13), {C::Vehicles, body});
-      break;
-    case ActorKind::Pedestrian:
-      break;
+    case ActorKind::Truck: return {Family::BoxTruck, Livery::Plain};
+    case ActorKind::Lorry: return {Family::Lorry, Livery::Plain};
+    case ActorKind::Bus: return {Family::CityBus, Livery::Plain};
+    case ActorKind::Bike: return {Family::Bicycle, Livery::Plain};
+    case ActorKind::Motorbike: return {Family::Motorbike, Livery::Plain};
+    default: break;
   }
-  return mesh;
+  static const Family kCars[] = {Family::Hatchback, Family::Saloon, Family::Estate,
+                                 Family::Suv,       Family::Pickup, Family::Van};
+  static const double kShares[] = {0.24, 0.22, 0.14, 0.2, 0.08, 0.12};
+  double u = random.uniform();
+  int k = 0;
+  while (k < 5 && (u -= kShares[k]) > 0) ++k;
+  const Family family = kCars[k];
+  const double l = random.uniform();
+  const Livery livery = family == Family::Van && l < 0.3                               ? Livery::Delivery
+                        : (family == Family::Saloon || family == Family::Estate) && l < 0.1 ? Livery::Taxi
+                        : (family == Family::Estate || family == Family::Suv) && l > 0.96 ? Livery::Police
+                                                                                        : Livery::Plain;
+  return {family, livery};
 }
 
-void add_wheels(Actor& actor, ActorKind kind, Random& random, Scene& scene,
-                const std::shared_ptr<const Track>& track) {
-  const KindSize size = kind_size(kind);
-  const double radius = kind == ActorKind::Car ? 0.33 : kind == ActorKind::Bike ? 0.32 : 0.5;
-  const double width = kind == ActorKind::Bike ? 0.1 : 0.25;
-  const std::uint16_t tyre = add_material(scene, city_materials::tyre(width)),
-                      rim = add_material(scene, city_materials::wheel_rim(random.bits()));
-  if (kind == ActorKind::Bike) {
-    for (double x : {-0.6, 0.6})
-      actor.parts.push_back(wheel(V3(x, 0, radius), radius, width, tyre, rim, track));
-    return;
+// The generalized winding number of a point with respect to a mesh: about 1 inside a closed
+// surface, 0 outside (the solid angles of its triangles, Van Oosterom and Strackee).
+double winding(const Mesh& mesh, const V3& p) {
+  double sum = 0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const V3 a = mesh.vertices[t[0]].cast<double>() - p, b = mesh.vertices[t[1]].cast<double>() - p,
+             c = mesh.vertices[t[2]].cast<double>() - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
   }
-  const double axle = size.length / 2 - (kind == ActorKind::Car ? 0.8 : 1.4);
-  for (double x : {-axle, axle})
-    for (double y : {-size.width / 2 + 0.15, size.width / 2 - 0.15})
-      actor.parts.push_back(wheel(V3(x, y, radius), radius, width, tyre, rim, track));
+  return sum / (4 * kPi);
 }
 
-void add_body(Actor& actor, const std::shared_ptr<const Track>& track, Random& random,
-              Scene& scene) {
-  namespace cm = city_materials;
-  const auto seed = random.bits();
-  const std::uint16_t shirt = add_material(scene, cm::clothing(seed, false)),
-                      trousers = add_material(scene, cm::clothing(seed + 1, true)),
-                      skin = add_material(scene, cm::skin(seed + 2)),
-                      hair = add_material(scene, cm::hair(seed + 3));
-  Part torso{{}, [](double) { return Pose::Identity(); }};
-  add_oriented_box(torso.mesh, at(0, 0, 1.15), V3(0.13, 0.22, 0.3), {C::Pedestrian, shirt});
-  add_oriented_box(torso.mesh, at(0, 0, 1.6), V3(0.1, 0.09, 0.12), {C::Pedestrian, skin});
-  add_oriented_box(torso.mesh, at(-0.015, 0, 1.71), V3(0.105, 0.095, 0.03), {C::Pedestrian, hair});
-  actor.parts.push_back(std::move(torso));
-  for (int side : {-1, 1}) {
-    const double phase = side > 0 ? 0 : kPi;
-    actor.parts.push_back(
-        limb(V3(0, side * 0.1, 0.85), V3(0.08, 0.08, 0.425), 0.45, phase, trousers, track));
-    actor.parts.push_back(
-        limb(V3(0, side * 0.29, 1.42), V3(0.055, 0.055, 0.32), 0.35, phase + kPi, shirt, track));
+// Whether every point within `clearance` of p is outside the mesh (tested on a sphere of points).
+bool clear_of(const Mesh& mesh, const V3& p, double clearance) {
+  if (winding(mesh, p) > 0.5) return false;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k)
+        if ((i || j || k) && winding(mesh, p + clearance * V3(i, j, k).normalized()) > 0.5)
+          return false;
+  return true;
+}
+
+// A vehicle model stretched along x by sx, moved by shift and scaled in height by sz (wheels stay
+// round and on the ground), every triangle of class `cls`.
+VehicleModel fitted(VehicleModel model, double sx, double shift, double sz, SemanticClass cls) {
+  Mesh body = *model.body;
+  const Eigen::Vector3d scale(sx, 1, sz);
+  for (Eigen::Vector3f& v : body.vertices)
+    v = (v.cast<double>().cwiseProduct(scale) + V3(shift, 0, 0)).cast<float>();
+  for (Eigen::Vector3f& n : body.normals) n = n.cast<double>().cwiseQuotient(scale).normalized().cast<float>();
+  std::fill(body.classes.begin(), body.classes.end(), cls);
+  model.body = std::make_shared<const Mesh>(std::move(body));
+  for (auto& wheel : model.wheels) {
+    Mesh relabelled = *wheel;
+    std::fill(relabelled.classes.begin(), relabelled.classes.end(), cls);
+    wheel = std::make_shared<const Mesh>(std::move(relabelled));
   }
+  for (WheelMount& mount : model.mounts) mount.hub.x() = mount.hub.x() * sx + shift;
+  model.roof_z *= sz, model.roof_x = model.roof_x * sx + shift, model.wheelbase *= sx;
+  return model;
+}
+
+// The curvature of a track's path where it has covered `distance` (its heading's change per metre).
+double curvature(const Track& track, double distance) {
+  const double h = 0.5;
+  return wrapped_angle(yaw_of(pose_at_distance(track, distance + h)) -
+                       yaw_of(pose_at_distance(track, distance - h))) /
+         (2 * h);
 }
 
 }  // namespace
 
 KindSize kind_size(ActorKind kind) {
   switch (kind) {
-    case ActorKind::Car:
-      return {4.5, 1.9};
-    case ActorKind::Truck:
-      return {8.0, 2.5};
-    case ActorKind::Bus:
-      return {11.0, 2.55};
-    case ActorKind::Bike:
-      return {1.9, 0.7};
-    case ActorKind::Pedestrian:
-      return {0.5, 0.6};
+    case ActorKind::Car: return {4.5, 1.9};
+    case ActorKind::Truck: return {8.0, 2.5};
+    case ActorKind::Bus: return {11.0, 2.55};
+    case ActorKind::Bike: return {1.9, 0.7};
+    case ActorKind::Pedestrian: return {0.5, 0.6};
+    case ActorKind::Lorry: return {16.5, 2.55};
+    case ActorKind::Motorbike: return {2.1, 0.8};
+    case ActorKind::Rider: return {0.6, 0.6};
   }
   return {1, 1};
 }
 
-Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const Track> track,
-                 const Mesh* user_model, Random& random, Scene& scene) {
-  Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+struct ActorLibrary::Impl {
+  Scene& scene;
+  std::uint64_t seed;
+  bool wet;
+  std::map<std::pair<Family, int>, VehicleModel> vehicles;
+  std::map<std::tuple<int, int, int, int, int, int, int, int, int, int>, PersonModel> people;
+  std::map<Livery, std::shared_ptr<const Mesh>> roofs;
+  std::map<double, std::uint16_t> tyres;
+  std::uint16_t glass, trim, chrome, head_lamp, tail_lamp, indicator, interior, underbody, grille,
+      eyes;
+
+  Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
+    glass = add_material(scene, cm::clear_glass());
+    trim = add_material(scene, cm::trim_plastic());
+    chrome = add_material(scene, cm::chrome());
+    head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}));
+    tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}));
+    indicator = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}));
+    interior = add_material(scene, cm::upholstery(seed));
+    underbody = add_material(scene, cm::underbody());
+    grille = add_material(scene, cm::grille());
+    eyes = add_material(scene, cm::eyes());
+  }
+
+  const VehicleModel& vehicle_model(Family family, int variant) {
+    auto it = vehicles.find({family, variant});
+    if (it == vehicles.end()) it = vehicles.emplace(std::pair{family, variant}, build_vehicle(family, variant)).first;
+    return it->second;
+  }
+
+  std::uint16_t tyre(double width) {
+    auto [it, fresh] = tyres.try_emplace(width, 0);
+    if (fresh) it->second = add_material(scene, cm::tyre(width));
+    return it->second;
+  }
+
+  // The vehicle's slots: shared trim, its own paint, plate, rims and livery.
+  std::vector<std::uint16_t> vehicle_slots(const VehicleModel& model, Livery livery,
+                                           std::uint64_t look) {
+    Random random(look);
+    Rgb paint = cm::popular_car_colour(random.bits());
+    Rgb second = cm::popular_car_colour(random.bits());
+    Material body;
+    switch (livery) {
+      case Livery::Taxi: paint = {0.75f, 0.55f, 0.02f}; body = cm::body_paint(paint, look); break;
+      case Livery::Police:
+        body = cm::banded_paint({0.78f, 0.78f, 0.76f}, {0.03f, 0.08f, 0.45f}, 0.55, 0.85, true, look);
+        break;
+      case Livery::Delivery:
+        body = cm::banded_paint({0.8f, 0.8f, 0.78f}, second, 0.9, 1.5, false, look);
+        break;
+      case Livery::Plain: body = cm::body_paint(paint, look); break;
+    }
+    if (model.family == Family::CityBus) {  // buses in a fleet colour
+      static const Rgb kFleets[] = {{0.5f, 0.03f, 0.03f}, {0.03f, 0.12f, 0.45f},
+                                    {0.05f, 0.3f, 0.1f},  {0.75f, 0.55f, 0.05f},
+                                    {0.78f, 0.78f, 0.76f}};
+      body = cm::body_paint(kFleets[random.below(5)], look);
+    }
+    std::vector<std::uint16_t> slots(kSlotCount, trim);
+    slots[kPaint] = add_material(scene, body);
+    slots[kGlass] = glass, slots[kTrim] = trim, slots[kChrome] = chrome;
+    slots[kHeadLamp] = head_lamp, slots[kTailLamp] = tail_lamp, slots[kIndicator] = indicator;
+    slots[kPlate] = add_material(scene, cm::number_plate(random.bits()));
+    slots[kInterior] = interior, slots[kUnderbody] = underbody, slots[kGrille] = grille;
+    slots[kTyre] = tyre(model.family == Family::Bicycle ? 0.036 : 0.25);
+    slots[kRim] = add_material(scene, cm::wheel_rim(random.bits()));
+    const Rgb band = livery == Livery::Taxi ? Rgb(0.9f, 0.9f, 0.88f)
+                     : livery == Livery::Police ? Rgb(0.05f, 0.1f, 0.6f)
+                                                : Rgb(random.chance(0.5) ? 0.8f : second.x(),
+                                                      random.chance(0.5) ? 0.8f : second.y(),
+                                                      random.chance(0.5) ? 0.78f : second.z());
+    slots[kLivery] = add_material(scene, cm::body_paint(band, look + 1));
+    slots[kSkin] = interior;
+    return slots;
+  }
+
+  const PersonModel& person_model(const Look& look, SemanticClass cls) {
+    const auto key = std::tuple{int(look.female), int(look.child), int(std::lround(look.height * 20)),
+                                int(std::lround(look.build * 10)), int(look.top), int(look.bottom),
+                                int(look.hair), int(look.bag), int(look.umbrella), int(cls)};
+    auto it = people.find(key);
+    if (it == people.end()) {
+      Look rounded = look;
+      rounded.height = std::get<2>(key) / 20.0, rounded.build = std::get<3>(key) / 10.0;
+      it = people.emplace(key, build_person(rounded, cls)).first;
+    }
+    return it->second;
+  }
+
+  std::vector<std::uint16_t> person_slots(const Look& look, std::uint64_t id) {
+    std::vector<std::uint16_t> slots(kPersonSlots);
+    slots[kSkinTone] = add_material(scene, cm::skin(id));
+    slots[kTop] = add_material(scene, cm::clothing(id + 1, false));
+    slots[kBottom] = look.bottom == Look::Bottom::Dress ? slots[kTop]
+                                                         : add_material(scene, cm::clothing(id + 2, true));
+    slots[kShoes] = add_material(scene, cm::shoes(id + 3));
+    slots[kHair] = add_material(scene, cm::hair(id + 4));
+    slots[kBag] = add_material(scene, cm::bag(id + 5));
+    slots[kUmbrella] = look.umbrella ? add_material(scene, cm::umbrella(id + 6)) : slots[kBag];
+    slots[kEyes] = eyes;
+    return slots;
+  }
+
+  // The wheels (and a lorry's trailer, a bicycle's cranks) of a vehicle following `track`, as
+  // parts of its actor; `body` maps the actor frame to where the wheels' road frame is (the ego's
+  // body sways on its springs, its wheels stay on the road).
+  void add_running_gear(Actor& actor, const VehicleModel& model, const std::vector<std::uint16_t>& slots,
+                        const std::shared_ptr<const Track>& track,
+                        const std::function<Pose(double)>& road_in_actor) {
+    const auto trailer = [model, track](double t) {  // trailer -> road frame of the tractor
+      const Pose now = track->pose(t);
+      const double d = track->distance_at(t);
+      const V3 kingpin = now * model.kingpin;
+      const V3 axle = pose_at_distance(*track, d + model.kingpin.x() - model.trailer_axles).translation() +
+                      V3(0, 0, model.kingpin.z());
+      const V3 x = (kingpin - axle).normalized(), y = V3::UnitZ().cross(x).normalized();
+      Pose world = Pose::Identity();
+      world.linear() << x, y, x.cross(y);
+      world.translation() = kingpin;
+      return Pose(now.inverse() * world);
+    };
+    if (model.trailer) {
+      Part part{model.trailer, [=](double t) { return road_in_actor(t) * trailer(t); }};
+      part.materials = slots;
+      actor.parts.push_back(part);
+    }
+    for (const WheelMount& mount : model.mounts) {
+      const double radius = model.wheel_radius[std::size_t(mount.mesh)];
+      const double wheelbase = model.wheelbase;
+      Part part{model.wheels[std::size_t(mount.mesh)],
+                [=](double t) {
+                  const double d = track->distance_at(t);
+                  const Pose roll(Eigen::AngleAxisd(d / radius, V3::UnitY()));
+                  if (mount.trailer) return Pose(road_in_actor(t) * trailer(t) * at(mount.hub) * roll);
+                  const double steer =
+                      mount.steers ? std::clamp(std::atan(wheelbase * curvature(*track, d)), -0.6, 0.6) : 0;
+                  return Pose(road_in_actor(t) * at(mount.hub) *
+                              Pose(Eigen::AngleAxisd(steer, V3::UnitZ())) * roll);
+                }};
+      part.materials = slots;
+      actor.parts.push_back(part);
+    }
+    if (model.cranks) {
+      Part part{model.cranks, [=](double t) {
+                  const double turns = track->distance_at(t) / (model.wheel_radius.front() * model.gear);
+                  return Pose(at(model.bottom_bracket) * Pose(Eigen::AngleAxisd(turns, V3::UnitY())));
+                }};
+      part.materials = slots;
+      actor.parts.push_back(part);
+    }
+  }
+};
+
+ActorLibrary::ActorLibrary(Scene& scene, std::uint64_t seed, bool wet)
+    : impl_(std::make_unique<Impl>(scene, seed, wet)) {}
+ActorLibrary::~ActorLibrary() = default;
+
+std::vector<Actor> ActorLibrary::vehicle(ActorKind kind, std::uint16_t instance,
+                                         std::shared_ptr<const Track> track,
+                                         const Mesh* user_model) {
   if (user_model) {
-    actor.parts.push_back({*user_model, [](double) { return Pose::Identity(); }});
-    return actor;
+    Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+    actor.parts.push_back(rigid_part(*user_model));
+    return {std::move(actor)};
   }
-  if (kind == ActorKind::Pedestrian) {
-    add_body(actor, track, random, scene);
-    return actor;
+  Random random(derived_seed(impl_->seed, instance, 0x76656869636c65ull));  // "vehicle"
+  const auto [family, livery] = family_of(kind, random);
+  return vehicle_of(family, random.below(kVariants), livery, instance, std::move(track));
+}
+
+std::vector<Actor> ActorLibrary::vehicle_of(Family family, int variant, Livery livery,
+                                            std::uint16_t instance,
+                                            std::shared_ptr<const Track> track) {
+  Impl& lib = *impl_;
+  Random random(derived_seed(lib.seed, instance, 0x6c6f6f6bull));  // "look"
+  Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+  const VehicleModel& model = lib.vehicle_model(family, variant);
+  const std::vector<std::uint16_t> slots = lib.vehicle_slots(model, livery, random.bits());
+  actor.parts.push_back({model.body, [](double) { return Pose::Identity(); }, {}, slots});
+  lib.add_running_gear(actor, model, slots, track, [](double) { return Pose::Identity(); });
+  if (livery == Livery::Taxi || livery == Livery::Police) {
+    auto& roof = lib.roofs[livery];
+    if (!roof) roof = std::make_shared<const Mesh>(livery_roof(livery));
+    actor.parts.push_back({roof, [z = model.roof_z, x = model.roof_x](double) {
+                             return Pose(Eigen::Translation3d(x, 0, z - 0.01));
+                           }, {}, slots});
   }
-  namespace cm = city_materials;
-  const auto seed = random.bits();
-  const Livery livery{add_material(scene, cm::car_paint(seed)),
-                      add_material(scene, cm::vehicle_glass()),
-                      add_material(scene, cm::lamp({0.85f, 0.85f, 0.8f})),
-                      add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f})),
-                      add_material(scene, cm::number_plate(seed + 1))};
-  actor.parts.push_back({vehicle_body(kind, livery), [](double) { return Pose::Identity(); }});
-  add_wheels(actor, kind, random, scene, track);
+  std::vector<Actor> actors{std::move(actor)};
+  if (family != Family::Bicycle && family != Family::Motorbike) return actors;
+  Look rider = random_look(random, false, false);
+  rider.height = rider_height(model), rider.umbrella = false;
+  if (rider.bottom == Look::Bottom::Skirt || rider.bottom == Look::Bottom::Dress)
+    rider.bottom = Look::Bottom::Trousers;
+  if (rider.top == Look::Top::Coat) rider.top = Look::Top::Jacket;
+  const PersonModel& person = lib.person_model(rider, SemanticClass::Rider);
+  Actor on{std::uint16_t(instance + 1), {}, [track](double t) { return track->pose(t); }};
+  on.parts.push_back({person.mesh, [](double) { return Pose::Identity(); },
+                      riding(person, model, track), lib.person_slots(rider, random.bits())});
+  actors.push_back(std::move(on));
+  return actors;
+}
+
+Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<const Track> ego,
+                        double height, const std::vector<Vec3>& cameras) {
+  Impl& lib = *impl_;
+  std::vector<V3> seen;  // the cameras in the body's frame (the rig's, lowered to the road)
+  for (const Vec3& c : cameras) seen.push_back(c + V3(0, 0, height));
+  std::optional<VehicleModel> chosen;
+  for (Family family : {Family::Estate, Family::Hatchback})
+    for (bool mirrors : {true, false}) {
+      const VehicleModel model = build_vehicle(family, 0, mirrors);
+      double sz = 1;
+      for (const V3& c : seen)
+        if (std::abs(c.x()) < model.length / 2 && std::abs(c.y()) < model.width / 2)
+          sz = std::min(sz, (c.z() - 2 * kEgoClearance) / model.roof_z);
+      for (double sx : {1.0, 0.95, 0.9, 0.85})
+        for (double shift : {0.0, -0.1, 0.1, -0.2, 0.2, -0.3, 0.3}) {
+          if (chosen || sz < 0.85) continue;
+          VehicleModel candidate = fitted(model, sx, shift, sz, SemanticClass::EgoVehicle);
+          if (std::all_of(seen.begin(), seen.end(),
+                          [&](const V3& c) { return clear_of(*candidate.body, c, kEgoClearance); }))
+            chosen = std::move(candidate);
+        }
+    }
+  if (!chosen) {
+    std::string where;
+    for (const V3& c : seen)
+      where += " (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
+               std::to_string(c.z() - height) + ")";
+    throw std::invalid_argument("no ego vehicle fits round the rig's cameras at" + where +
+                                " (rig frame, m): each must be " + std::to_string(kEgoClearance) +
+                                " m outside the car; move them or leave the ego undrawn (--no-ego)");
+  }
+  const VehicleModel& model = *chosen;
+  const Pose lowered(Eigen::Translation3d(0, 0, -height));
+  Actor actor{instance, {}, [rig, lowered](double t) { return Pose(rig(t) * lowered); }};
+  const std::vector<std::uint16_t> slots =
+      lib.vehicle_slots(model, Livery::Plain, derived_seed(lib.seed, instance, 0x65676full));
+  Part body{model.body, [](double) { return Pose::Identity(); }, {}, slots};
+  body.on_rig = true;
+  actor.parts.push_back(std::move(body));
+  lib.add_running_gear(actor, model, slots, ego, [rig, ego, lowered](double t) {
+    return Pose((rig(t) * lowered).inverse() * ego->pose(t));
+  });
   return actor;
 }
 
-void add_parked_vehicle(ActorKind kind, const Pose& pose, const Mesh* user_model, Random& random,
-                        Scene& scene) {
-  const auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
-  const Actor actor = make_actor(kind, 0, still, user_model, random, scene);
-  for (const Part& part : actor.parts) append_mesh(scene.world, part.mesh, pose * part.pose(0));
+Actor ActorLibrary::pedestrian(std::uint16_t instance, std::shared_ptr<const Track> track,
+                               double speed, bool child, const Mesh* user_model) {
+  if (user_model) {
+    Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+    actor.parts.push_back(rigid_part(*user_model));
+    return actor;
+  }
+  Random random(derived_seed(impl_->seed, instance, 0x706572736f6eull));  // "person"
+  return person_of(random_look(random, child, impl_->wet), instance, std::move(track), speed);
+}
+
+Actor ActorLibrary::person_of(const Look& look, std::uint16_t instance,
+                              std::shared_ptr<const Track> track, double speed) {
+  Impl& lib = *impl_;
+  const std::uint64_t id = derived_seed(lib.seed, instance, 0x636c6f74686573ull);  // "clothes"
+  Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+  const PersonModel& person = lib.person_model(look, SemanticClass::Pedestrian);
+  const Gait gait = gait_for(person.skeleton, speed, id, look.umbrella);
+  actor.parts.push_back({person.mesh, [](double) { return Pose::Identity(); },
+                         walking(person, track, gait), lib.person_slots(look, id)});
+  return actor;
 }
 
 }  // namespace flowscape

@@ -1,8 +1,14 @@
 #pragma once
-// Internal: the built-in actor models (cars, trucks, buses, bikes, pedestrians) with moving parts:
-// wheels that roll with the distance travelled and limbs that swing with the walking cycle.
+// Internal: the city's actors. Detailed (the default): the vehicle families and people of assets/,
+// each model built once per city and shared by the actors showing it, every actor with its own
+// paint, plate, clothes; two-wheelers carry a rider (an actor of its own), parked vehicles are
+// actors too, and the ego vehicle is drawn under the rig. Legacy: flowscape 0.9's box models
+// (assets/legacy_models.cpp), byte for byte.
 #include <memory>
+#include <vector>
 
+#include "assets/people.h"
+#include "assets/vehicles.h"
 #include "flowscape/core/random.h"
 #include "flowscape/scenes/city.h"
 #include "traffic.h"
@@ -14,11 +20,45 @@ struct KindSize {
 };
 KindSize kind_size(ActorKind kind);
 
-// An actor following `track`; `user_model` (if not null) replaces the built-in body.
-Actor make_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const Track> track,
-                 const Mesh* user_model, Random& random, Scene& scene);
-// A vehicle standing at `pose` for good, baked into the static world (class Vehicles, instance 0).
-void add_parked_vehicle(ActorKind kind, const Pose& pose, const Mesh* user_model, Random& random,
-                        Scene& scene);
+// flowscape 0.9's models: a vehicle or walker following `track` (`user_model`, if not null,
+// replaces the built-in body), and a parked vehicle baked into the static world (instance 0).
+Actor legacy_actor(ActorKind kind, std::uint16_t instance, std::shared_ptr<const Track> track,
+                   const Mesh* user_model, Random& random, Scene& scene);
+void add_legacy_parked_vehicle(ActorKind kind, const Pose& pose, const Mesh* user_model,
+                               Random& random, Scene& scene);
+
+// The detailed models of one city.
+class ActorLibrary {
+ public:
+  // `seed`: the city's; `wet`: umbrellas and coats.
+  ActorLibrary(Scene& scene, std::uint64_t seed, bool wet);
+  ~ActorLibrary();
+  ActorLibrary(const ActorLibrary&) = delete;
+  ActorLibrary& operator=(const ActorLibrary&) = delete;
+
+  // A vehicle following `track` (standing still for a parked one), and for two-wheelers its rider
+  // (instance + 1) after it; `user_model` replaces the built-in body (no rider then).
+  std::vector<Actor> vehicle(ActorKind kind, std::uint16_t instance,
+                             std::shared_ptr<const Track> track, const Mesh* user_model);
+  Actor pedestrian(std::uint16_t instance, std::shared_ptr<const Track> track, double speed,
+                   bool child, const Mesh* user_model);
+  // The same with the family, variant and livery (a person's look) given: galleries and tests.
+  std::vector<Actor> vehicle_of(assets::Family family, int variant, assets::Livery livery,
+                                std::uint16_t instance, std::shared_ptr<const Track> track);
+  Actor person_of(const assets::Look& look, std::uint16_t instance,
+                  std::shared_ptr<const Track> track, double speed);
+  // The ego vehicle: a car whose body is fixed to the rig (`rig`, its origin `height` above the
+  // ego's road frame `ego`), its wheels on the road, rolling and steering; placed so that every
+  // camera (rig frame) is at least kEgoClearance outside it. Throws std::invalid_argument naming
+  // the camera when no placement leaves it clear.
+  Actor ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<const Track> ego, double height,
+            const std::vector<Vec3>& cameras);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+inline constexpr double kEgoClearance = 0.05;  // metres between a camera and the ego's body
 
 }  // namespace flowscape

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "flowscape/core/files.h"
+#include "flowscape/scenes/skinning.h"
 #include "gltf_read.h"
 
 namespace flowscape {
@@ -47,7 +48,8 @@ std::string class_name(SemanticClass cls) {
       "Unlabeled",    "Building", "Fence",    "Other",      "Pedestrian", "Pole",
       "RoadLine",     "Road",     "SideWalk", "Vegetation", "Vehicles",   "Wall",
       "TrafficSign",  "Sky",      "Ground",   "Bridge",     "RailTrack",  "GuardRail",
-      "TrafficLight", "Static",   "Dynamic",  "Water",      "Terrain"};
+      "TrafficLight", "Static",   "Dynamic",  "Water",      "Terrain",    "Rider",
+      "Car",          "Truck",    "Bus",      "Motorcycle", "Bicycle",    "EgoVehicle"};
   const int id = int(cls);
   return id < int(std::size(kNames)) ? kNames[id] : "class" + std::to_string(id);
 }
@@ -117,7 +119,7 @@ void export_gltf(const Scene& scene, double t, const std::string& path) {
   add_node(scene.world, Pose::Identity(), 0);
   for (const Actor& actor : scene.actors)
     for (const Part& part : actor.parts)
-      add_node(part.mesh, part_pose(actor, part, t), actor.instance);
+      add_node(part_mesh_at(part, t), part_pose(actor, part, t), actor.instance);
   model.defaultScene = 0;
   tinygltf::TinyGLTF writer;
   std::ostringstream encoded;

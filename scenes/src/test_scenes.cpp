@@ -32,11 +32,11 @@ Actor sliding_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity
   Actor box{7, {}, [centre, velocity](double t) {
               return Pose(Eigen::Translation3d(centre + velocity * t));
             }};
-  Part body{{}, fixed_pose()};
-  add_box(body.mesh, Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1),
+  Mesh body;
+  add_box(body, Eigen::Vector3f::Constant(-1), Eigen::Vector3f::Constant(1),
           SemanticClass::Vehicles);
-  body.mesh.materials.assign(body.mesh.triangles.size(), material);
-  box.parts.push_back(std::move(body));
+  body.materials.assign(body.triangles.size(), material);
+  box.parts.push_back(rigid_part(std::move(body)));
   return box;
 }
 

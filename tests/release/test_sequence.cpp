@@ -63,7 +63,7 @@ TEST_CASE("every actor's recorded box holds its vertices and its velocity is its
       const Vec3 centre = column("centre"), half = column("size") / 2;
       // every vertex of every part, posed at t, lies in the box (to the record's rounding)
       for (const Part& part : actor.parts)
-        for (const Eigen::Vector3f& vertex : part.mesh.vertices) {
+        for (const Eigen::Vector3f& vertex : part.mesh->vertices) {
           const Vec3 world = actor.pose(t) * (part.pose(t) * vertex.cast<double>());
           const Vec3 in_box = rotation.conjugate() * (world - centre);
           REQUIRE((in_box.cwiseAbs() - half).maxCoeff() < 1e-5);

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "flowscape/release/classes.h"
 #include "flowscape/core/files.h"
 #include "flowscape/quality/flow_datasets.h"
 #include "flowscape/release/meta.h"
@@ -93,7 +94,7 @@ TEST_CASE("ego speed and yaw rate follow a rig driving a circle") {
     const double a = f * dtheta;
     poses.push_back(rig_at(radius * std::sin(a), radius * (1 - std::cos(a)), a));
   }
-  const nlohmann::json s = sequence_statistics_json({}, {}, poses, fps).at("ego");
+  const nlohmann::json s = sequence_statistics_json({}, {}, poses, fps, 23).at("ego");
   REQUIRE(s.at("speed").size() == 30);
   for (std::size_t f = 0; f < 30; ++f) {
     CHECK(s["speed"][f].get<double>() ==
@@ -103,7 +104,8 @@ TEST_CASE("ego speed and yaw rate follow a rig driving a circle") {
   CHECK(s["yaw_change_degrees"].get<double>() == Approx(30 * dtheta * 180 / kPi).epsilon(1e-9));
   // across the +-180 degree seam of the heading the change stays small
   const nlohmann::json seam =
-      sequence_statistics_json({}, {}, {rig_at(0, 0, kPi - 0.01), rig_at(0, 0, -kPi + 0.01)}, fps);
+      sequence_statistics_json({}, {}, {rig_at(0, 0, kPi - 0.01), rig_at(0, 0, -kPi + 0.01)}, fps,
+                               23);
   CHECK(seam["ego"]["yaw_change_degrees"].get<double>() == Approx(0.02 * 180 / kPi));
 }
 
@@ -115,11 +117,13 @@ TEST_CASE("release statistics group sequences by map and weather") {
   const auto sequence = [&](double turn_degrees, double speed) {
     const double yaw = turn_degrees * kPi / 180;
     return sequence_statistics_json({}, {moving, last},
-                                    {rig_at(0, 0, 0), rig_at(speed / 30, 0, yaw)}, 30);
+                                    {rig_at(0, 0, 0), rig_at(speed / 30, 0, yaw)}, 30, 23);
   };
+  const std::vector<std::string>& names = class_table("carla-0.9.13").names;
   const nlohmann::json s = release_statistics({{"downtown", "sunny", 2, sequence(50, 6)},
                                                {"downtown", "rain", 2, sequence(10, 9)},
-                                               {"highway", "rain", 2, sequence(-90, 12)}});
+                                               {"highway", "rain", 2, sequence(-90, 12)}},
+                                              names);
   CHECK(s["all"]["sequences"] == 3);
   CHECK(s["all"]["turning_sequences"] == 2);  // |50| and |-90| >= 45
   CHECK(s["maps"]["downtown"]["turn_share"].get<double>() == 0.5);
@@ -132,7 +136,7 @@ TEST_CASE("release statistics group sequences by map and weather") {
   CHECK(s["all"]["actor_share"].get<double>() == Approx(100.0 / 2048));
   CHECK(s["all"]["valid_share"].get<double>() == Approx(0.5));  // of the frames with flow
   CHECK(s["all"]["class_shares"]["Vehicles"].get<double>() == Approx(100.0 / 2048));
-  CHECK(release_statistics(std::vector<SequenceStatistics>{}).is_null());
+  CHECK(release_statistics(std::vector<SequenceStatistics>{}, names).is_null());
 }
 
 TEST_CASE("a bad statistics record in meta.json is named") {
@@ -142,7 +146,7 @@ TEST_CASE("a bad statistics record in meta.json is named") {
   meta.frames = 2, meta.poses = {rig_at(0, 0, 0), rig_at(0.1, 0, 0)};
   meta.statistics = {{"view", "erp"}, {"flow_histogram", {1, 2}}};  // cut short
   write_meta(sequence_dir(release.path, meta.scene), meta);
-  CHECK_THROWS_WITH(release_statistics(release.path, {meta.scene}),
+  CHECK_THROWS_WITH(release_statistics(release.path, {meta.scene}, "carla-0.9.13"),
                     Catch::Contains("meta.json") && Catch::Contains("statistics"));
 }
 

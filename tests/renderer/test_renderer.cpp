@@ -268,10 +268,11 @@ TEST_CASE("an articulated part moves with its own pose on top of its actor's") {
   const double spin = 3, dt = 1 / kFrameRate;
   Scene scene;
   Actor wheel{3, {}, fixed_pose(Pose(Eigen::Translation3d(8, 0, 0)))};
-  Part plate{{}, [spin](double t) { return Pose(Eigen::AngleAxisd(spin * t, Vec3::UnitX())); }};
-  add_box(plate.mesh, Eigen::Vector3f(-0.05f, -2, -2), Eigen::Vector3f(0.05f, 2, 2),
+  Mesh plate;
+  add_box(plate, Eigen::Vector3f(-0.05f, -2, -2), Eigen::Vector3f(0.05f, 2, 2),
           SemanticClass::Dynamic);
-  wheel.parts.push_back(std::move(plate));
+  wheel.parts.push_back(
+      rigid_part(std::move(plate), [spin](double t) { return Pose(Eigen::AngleAxisd(spin * t, Vec3::UnitX())); }));
   scene.actors.push_back(std::move(wheel));
   Renderer renderer(scene);
   const int N = 64;

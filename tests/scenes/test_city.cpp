@@ -27,7 +27,7 @@ Box2 footprint(const Actor& actor, double t) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
   for (const Part& part : actor.parts) {
     const Pose to_actor = inverse * part_pose(actor, part, t);
-    for (const Eigen::Vector3f& v : part.mesh.vertices) {
+    for (const Eigen::Vector3f& v : part.mesh->vertices) {
       const Eigen::Vector3d p = to_actor * v.cast<double>();
       lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
     }
@@ -126,7 +126,7 @@ TEST_CASE("every map has 100-120 start points on its roads and classes on every 
     for (SemanticClass c : city.scene.world.classes) classes_here.insert(c);
     for (SemanticClass c : everywhere) CHECK(classes_here.count(c) == 1);
     for (const Actor& actor : city.scene.actors)
-      for (const Part& part : actor.parts) check_mesh(part.mesh);
+      for (const Part& part : actor.parts) check_mesh(*part.mesh);
     first_vertices.insert({city.scene.world.vertices[40].x(), city.scene.world.vertices[40].y()});
   }
   CHECK(first_vertices.size() == kMapCount);  // eight different maps
@@ -315,7 +315,7 @@ TEST_CASE("user models from assimp's test set replace built-in actors") {
   for (std::size_t a = 0; a < city.actors.size(); ++a)
     if (city.actors[a].kind == ActorKind::Car) {
       REQUIRE(city.scene.actors[a].parts.size() == 1);
-      CHECK(city.scene.actors[a].parts[0].mesh.triangles.size() == 12);
+      CHECK(city.scene.actors[a].parts[0].mesh->triangles.size() == 12);
       ++replaced;
     }
   CHECK(replaced > 0);
@@ -357,11 +357,11 @@ TEST_CASE("a map exported as glTF reads back with the same triangles and classes
   const Actor& actor = city.scene.actors[2];
   CHECK(meshes[3].instance == actor.instance);
   std::size_t triangles = 0;
-  for (const Part& part : actor.parts) triangles += part.mesh.triangles.size();
+  for (const Part& part : actor.parts) triangles += part.mesh->triangles.size();
   CHECK(meshes[3].mesh.triangles.size() == triangles);
   const Pose body = part_pose(actor, actor.parts[0], 0.5);
   const Eigen::Vector3f expected =
-      (body * actor.parts[0].mesh.vertices[0].cast<double>()).cast<float>();
+      (body * actor.parts[0].mesh->vertices[0].cast<double>()).cast<float>();
   float nearest = 1e9;
   for (const auto& v : meshes[3].mesh.vertices) nearest = std::min(nearest, (v - expected).norm());
   CHECK(nearest < 1e-5f);

@@ -87,7 +87,7 @@ Actor rain_actor(const Weather& w, Random& random, const PoseTrack& rig, Scene& 
                 const double fall = std::fmod(kSpeed * t, kHeight);
                 return Pose(Eigen::Translation3d(at.x(), at.y(), at.z() - 3 - fall));
               }};
-  actor.parts.push_back({std::move(streaks), [](double) { return Pose::Identity(); }});
+  actor.parts.push_back(rigid_part(std::move(streaks)));
   actor.color_only = true;
   return actor;
 }
@@ -130,7 +130,7 @@ Actor puddle_actor(const Weather& w, Random& random, Scene& scene) {
                  10);
   }
   Actor actor{std::uint16_t(scene.actors.size() + 1), {}, [](double) { return Pose::Identity(); }};
-  actor.parts.push_back({std::move(discs), [](double) { return Pose::Identity(); }});
+  actor.parts.push_back(rigid_part(std::move(discs)));
   actor.color_only = true;
   return actor;
 }

@@ -8,6 +8,7 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/random.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/scenes/city.h"
@@ -32,6 +33,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
   visit("cube", c.cube), visit("models", c.models);
+  visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
 }
 
@@ -73,6 +75,9 @@ void validate(const ReleaseConfig& c) {
           "vehicles + pedestrians must be in 0..200");
   require(c.turn_share >= 0 && c.turn_share <= 1, "turn_share must be in 0..1");
   require(c.ego_routes == "mix" || c.ego_routes == "free", "ego_routes must be mix or free");
+  require(c.actors == "detailed" || c.actors == "legacy", "actors must be detailed or legacy");
+  require(c.ego == "auto" || c.ego == "on" || c.ego == "off", "ego must be auto, on or off");
+  class_table(c.classes);
   for (const auto& [kind, path] : c.models) {
     kind_from_name(kind);
     if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");

@@ -9,6 +9,7 @@
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/semantic_viz.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/preview.h"
@@ -147,18 +148,19 @@ void statistics_section(std::ostringstream& md, const nlohmann::json& statistics
   statistics_row(md, "all", statistics.at("all"));
 }
 
-void conventions_section(std::ostringstream& md) {
+void conventions_section(std::ostringstream& md, const ReleaseConfig& c) {
   md << "\n## Conventions\n\nAs `" << kManifestFile
      << "` states them for programs (`conventions`); each kind's `step` in its `layout` says which "
         "frame a flow goes to.\n\n```json\n"
-     << conventions_json().dump(1) << "\n```\n";
+     << conventions_json(c.classes).dump(1) << "\n```\n";
 }
 
-void classes_section(std::ostringstream& md) {
-  md << "\n## Classes (CARLA 0.9.10-0.9.13)\n\n| id | class | colour |\n| --- | --- | --- |\n";
-  for (int id = 0; id <= 22; ++id) {
-    const auto rgb = semantic_color(std::uint8_t(id));
-    md << "| " << id << " | " << class_name(SemanticClass(id)) << " | " << int(rgb[0]) << ","
+void classes_section(std::ostringstream& md, const ReleaseConfig& c) {
+  const ClassTable& table = class_table(c.classes);
+  md << "\n## Classes (" << table.name << ")\n\n| id | class | colour |\n| --- | --- | --- |\n";
+  for (int id = 0; id < table.size(); ++id) {
+    const auto& rgb = table.colours[std::size_t(id)];
+    md << "| " << id << " | " << table.names[std::size_t(id)] << " | " << int(rgb[0]) << ","
        << int(rgb[1]) << "," << int(rgb[2]) << " |\n";
   }
 }
@@ -187,8 +189,8 @@ std::string card_text(const ReleaseConfig& c, const fs::path& out,
   counts_section(md, c);
   sizes_section(md, c, out);
   statistics_section(md, statistics);
-  conventions_section(md);
-  classes_section(md);
+  conventions_section(md, c);
+  classes_section(md, c);
   layout_section(md, c);
   md << "\n## Examples\n\n";
   for (const std::string& weather : examples)

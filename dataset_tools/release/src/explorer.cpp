@@ -1,3 +1,4 @@
+#include "flowscape/release/classes.h"
 #include "flowscape/release/explorer.h"
 
 #include <tbb/parallel_for.h>
@@ -183,6 +184,7 @@ std::vector<View> shown_views(const ReleaseLayout& layout, bool faces) {
 nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
                               const ExplorerOptions& options) {
   const ReleaseLayout layout = read_release_layout(release);
+  const ClassTable& table = class_table(read_release_class_table(release));
   const std::vector<View> views = shown_views(layout, options.faces);
   std::vector<SequenceEntry> sequences;
   std::vector<SequenceStatistics> statistics_of;
@@ -191,7 +193,8 @@ nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
     SequenceMeta meta = read_meta(dir);
     if (meta.statistics.is_null())  // a release from before meta.json recorded them
       meta.statistics =
-          sequence_statistics_from_files(dir, layout, meta.poses, meta.frames, meta.fps);
+          sequence_statistics_from_files(dir, layout, meta.poses, meta.frames, meta.fps,
+                                         table.size());
     statistics_of.push_back(checked_statistics(dir, meta));
     std::vector<int> frames = sampled_frames(meta.frames, options.frames);
     sequences.push_back({info, std::move(meta), std::move(frames)});
@@ -225,7 +228,7 @@ nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
 
   nlohmann::json sequence_list = nlohmann::json::array();
   for (const SequenceEntry& s : sequences) sequence_list.push_back(sequence_json(s, views, layout));
-  const nlohmann::json statistics = release_statistics(statistics_of);
+  const nlohmann::json statistics = release_statistics(statistics_of, table.names);
   nlohmann::json data = {{"release", release_json(release)},
                          {"statistics", statistics},
                          {"previews", kPreviewsDir},

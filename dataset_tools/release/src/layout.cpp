@@ -1,5 +1,7 @@
 #include "flowscape/release/layout.h"
 
+#include "flowscape/release/classes.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -281,7 +283,8 @@ nlohmann::json layout_json(const ReleaseLayout& layout) {
           {"kinds", kinds}};
 }
 
-nlohmann::json conventions_json() {
+nlohmann::json conventions_json(const std::string& class_table_name) {
+  const ClassTable& table = class_table(class_table_name);
   return {
       {"frame_rate", kFrameRate},
       {"time", "frame F is at F / frame_rate seconds"},
@@ -322,7 +325,12 @@ nlohmann::json conventions_json() {
        {{"value", "unit normal of the first opaque surface, facing the camera"},
         {"frame", "camera frame"},
         {"sky", "nan"}}},
-      {"semantic", {{"classes", "CARLA 0.9.10-0.9.13 (design.md)"}, {"sky", 13}}},
+      {"semantic",
+       {{"classes", table.name == "carla-0.9.13" ? "CARLA 0.9.10-0.9.13 (design.md)"
+                                                 : "CARLA 0.9.14 and the ego vehicle (29)"},
+        {"table", table.name},
+        {"names", table.names},
+        {"sky", table.sky}}},
       {"instance", {{"static_world_and_sky", 0}}},
       {"boxes_2d",
        {{"value", "[instance, x0, y0, x1, y1] in pixel edges, x1 and y1 exclusive"},

@@ -165,7 +165,7 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
   nlohmann::json manifest = {
       {"generator", kGeneratorVersion},    {"config", to_json(config)},
       {"counts", counts(config)},          {"layout", layout_json(release_layout(config))},
-      {"conventions", conventions_json()}, {"files", all}};
+      {"conventions", conventions_json(config.classes)}, {"files", all}};
   if (!statistics.is_null()) manifest["statistics"] = statistics;
   write_text(out / kManifestFile, manifest.dump(1) + "\n");
 }
@@ -259,7 +259,7 @@ ReleaseConfig merge_shards(const fs::path& out, bool verify) {
   }
   config.shard = 0, config.shards = 1;
   if (verify) throw_first_problem(release_problems(out, config));
-  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config), config.classes);
   write_dataset_card(out, config, statistics);
   write_manifest(out, config, files, statistics);
   write_explorer(out, out / kExplorerDir, {.progress = true});

@@ -1,5 +1,7 @@
 #include "flowscape/release/meta.h"
 
+#include "flowscape/release/classes.h"
+
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -211,6 +213,21 @@ ReleaseLayout read_release_layout(const fs::path& release) {
                                              : nlohmann::json());
   } catch (const std::exception& e) {  // unknown kinds, and json's type errors
     throw FileError(manifest, std::string("layout: ") + e.what());
+  }
+}
+
+std::string read_release_class_table(const fs::path& release) {
+  const fs::path manifest = release / kManifestFile;
+  if (!fs::exists(manifest)) return "carla-0.9.13";
+  const nlohmann::json json = read_json(manifest);
+  try {
+    const nlohmann::json semantic =
+        json.value("conventions", nlohmann::json::object()).value("semantic", nlohmann::json::object());
+    const std::string name = semantic.value("table", "carla-0.9.13");
+    class_table(name);
+    return name;
+  } catch (const std::exception& e) {
+    throw FileError(manifest, std::string("conventions: ") + e.what());
   }
 }
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
 
 #include "flowscape/core/random.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/renderer/denoise.h"
 #include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/scenes/actors.h"
@@ -14,17 +16,25 @@
 namespace flowscape {
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan) {
-  return {plan.map,
-          plan.weather,
-          plan.seed,
-          config.vehicles,
-          config.pedestrians,
-          int(plan.seed % 100),
-          config.ego_routes == "free" ? EgoRoute::Free
-          : plan.turns                ? EgoRoute::Turn
-                                      : EgoRoute::Drive,
-          config.frames,
-          config.models};
+  SequenceSpec spec{plan.map,
+                    plan.weather,
+                    plan.seed,
+                    config.vehicles,
+                    config.pedestrians,
+                    int(plan.seed % 100),
+                    config.ego_routes == "free" ? EgoRoute::Free
+                    : plan.turns                ? EgoRoute::Turn
+                                                : EgoRoute::Drive,
+                    config.frames,
+                    config.models};
+  spec.actors = style_from_name(config.actors);
+  const Rig rig = release_rig(config);
+  spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.cameras.empty());
+  if (!rig.cameras.empty()) {
+    spec.ego_cameras.clear();
+    for (const RigCamera& camera : rig.cameras) spec.ego_cameras.push_back(camera.position);
+  }
+  return spec;
 }
 
 FramePair Sequence::frame_pair(int frame) const {
@@ -44,6 +54,7 @@ TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int 
   plan.request.scene_flow = layout.has("scene_flow");
   plan.request.normal = layout.has("normal");
   plan.request.shading_normal = layout.has("normal_shading");
+  plan.request.camera_on_rig = true;
   return plan;
 }
 
@@ -100,7 +111,11 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
   city_config.duration = (spec.frames + 1) / kFrameRate;
   city_config.models = spec.models;
-  Sequence s{spec, make_city(city_config), randomized(weather_preset(spec.weather), spec.seed)};
+  const Weather weather = randomized(weather_preset(spec.weather), spec.seed);
+  city_config.actors = spec.actors;
+  city_config.wet = weather.precipitation > 0;
+  city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;
+  Sequence s{spec, make_city(city_config), weather};
   apply_weather(s.weather, spec.seed, s.city.rig_track(), s.city.scene);
   return s;
 }
@@ -173,7 +188,7 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
     for (const Pose& pose : meta.poses) poses.push_back(pose_row_major(pose * mount));
     meta.views[view]["poses"] = poses;
   }
-  meta.actors = actor_records(s, config.frames);
+  meta.actors = actor_records(s, config.frames, config.classes);
   return meta;
 }
 
@@ -196,22 +211,53 @@ void add_box_pose(nlohmann::json& columns, const Pose& pose, const std::string& 
       {rounded(q.w()), rounded(q.x()), rounded(q.y()), rounded(q.z())});
 }
 
+// The box (in the actor's frame: pose = its centre there) holding every per-frame box.
+Box3 extent_box(const Actor& actor, const std::vector<Box3>& boxes, int frames) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (int f = 0; f < frames; ++f) {
+    const Box3& box = boxes[std::size_t(f)];
+    const Pose in_actor = actor.pose(Sequence::time(f)).inverse() * box.pose;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 local((corner & 1 ? 0.5 : -0.5) * box.size.x(), (corner & 2 ? 0.5 : -0.5) * box.size.y(),
+                       (corner & 4 ? 0.5 : -0.5) * box.size.z());
+      const Vec3 p = in_actor * local;
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+  }
+  Box3 out;
+  out.pose = Pose(Eigen::Translation3d((lo + hi) / 2)), out.size = hi - lo;
+  return out;
+}
+
 }  // namespace
 
-nlohmann::json actor_records(const Sequence& s, int frames) {
+nlohmann::json actor_records(const Sequence& s, int frames, const std::string& classes) {
+  const ClassTable& table = class_table(classes);
+  const bool detailed = s.city.config.actors == ActorStyle::Detailed;
   nlohmann::json actors = nlohmann::json::array();
   for (std::size_t a = 0; a < s.city.actors.size(); ++a) {
     const Actor& actor = s.city.scene.actors[a];
+    const ActorRecord& of = s.city.actors[a];
     nlohmann::json record = {{"instance", actor.instance},
-                             {"kind", kind_name(s.city.actors[a].kind)},
-                             {"class", int(actor_class(actor))}};
+                             {"kind", kind_name(of.kind)},
+                             {"class", int(table.of_scene[std::size_t(actor_class(actor))])}};
+    std::vector<Box3> boxes;
+    for (int f = 0; f < frames; ++f) boxes.push_back(actor_box(actor, Sequence::time(f)));
+    const Box3 fixed = extent_box(actor, boxes, frames);
+    if (detailed) {
+      if (of.parked) record["parked"] = true;
+      if (of.ego) record["ego"] = true;
+      record["fixed_box"] = {{"centre_in_actor", vector_json(fixed.pose.translation())},
+                             {"size", vector_json(fixed.size)}};
+    }
     for (int f = 0; f < frames; ++f) {  // one entry per frame in each column
       const double t = Sequence::time(f);
-      const Box3 box = actor_box(actor, t);
+      const Box3& box = boxes[std::size_t(f)];
       const Motion motion =
           actor_motion(actor, t, actor.pose(t).inverse() * box.pose.translation());
       add_box_pose(record, box.pose, "");
       add_box_pose(record, s.city.rig(t).inverse() * box.pose, "_rig");
+      if (detailed) record["centre_fixed"].push_back(vector_json(actor.pose(t) * fixed.pose.translation()));
       record["size"].push_back(vector_json(box.size));
       record["velocity"].push_back(vector_json(motion.linear));
       record["angular_velocity"].push_back(vector_json(motion.angular));

@@ -1,5 +1,7 @@
 #include "flowscape/release/statistics.h"
 
+#include "flowscape/release/classes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -114,12 +116,12 @@ FrameStatistics frame_statistics(const fs::path& dir, const View& view, int fram
 
 nlohmann::json sequence_statistics_from_files(const fs::path& dir, const ReleaseLayout& layout,
                                               const std::vector<Pose>& poses, int frames,
-                                              double fps) {
+                                              double fps, int classes) {
   const View view = statistics_view(layout);
   std::vector<FrameStatistics> statistics(static_cast<std::size_t>(frames));
   for (int f = 0; f < frames; ++f)
     statistics[std::size_t(f)] = frame_statistics(dir, view, f, frames);
-  return sequence_statistics_json(view, statistics, poses, fps);
+  return sequence_statistics_json(view, statistics, poses, fps, classes);
 }
 
 View statistics_view(const ReleaseLayout& layout) {
@@ -168,14 +170,14 @@ nlohmann::json ego_json(const std::vector<Pose>& poses, double fps) {
 
 nlohmann::json sequence_statistics_json(const View& view,
                                         const std::vector<FrameStatistics>& frames,
-                                        const std::vector<Pose>& poses, double fps) {
-  std::vector<std::uint64_t> histogram(flow_bin_edges().size(), 0), classes(kSemanticClasses, 0);
+                                        const std::vector<Pose>& poses, double fps,
+                                        int class_count) {
+  std::vector<std::uint64_t> histogram(flow_bin_edges().size(), 0), classes(std::size_t(class_count), 0);
   double flow_sum = 0;
   std::uint64_t pixels = 0, actor = 0, valid = 0, flow_frame_pixels = 0;
   for (const FrameStatistics& f : frames) {
     for (std::size_t k = 0; k < f.flow_histogram.size(); ++k) histogram[k] += f.flow_histogram[k];
-    for (int c = 0; c < kSemanticClasses; ++c)
-      classes[std::size_t(c)] += f.class_pixels[std::size_t(c)];
+    for (int c = 0; c < class_count; ++c) classes[std::size_t(c)] += f.class_pixels[std::size_t(c)];
     flow_sum += f.flow_sum, pixels += f.pixels, actor += f.actor_pixels, valid += f.valid_pixels;
     if (!f.flow_histogram.empty()) flow_frame_pixels += f.pixels;
   }
@@ -219,7 +221,7 @@ namespace {
 struct Group {
   int sequences = 0, frames = 0, turning = 0;
   std::vector<std::uint64_t> histogram = std::vector<std::uint64_t>(flow_bin_edges().size(), 0);
-  std::vector<std::uint64_t> classes = std::vector<std::uint64_t>(kSemanticClasses, 0);
+  std::vector<std::uint64_t> classes;
   double flow_sum = 0;
   std::uint64_t pixels = 0, actor = 0, valid = 0, flow_frame_pixels = 0;
   std::vector<double> speed, yaw_rate_abs, yaw_change_abs;
@@ -230,6 +232,7 @@ struct Group {
       for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += values.at(k).get<std::uint64_t>();
     };
     add_all(histogram, s.at("flow_histogram"));
+    classes.resize(std::max(classes.size(), s.at("class_pixels").size()), 0);
     add_all(classes, s.at("class_pixels"));
     flow_sum += s.at("flow_sum").get<double>();
     pixels += s.at("pixels").get<std::uint64_t>();
@@ -264,16 +267,15 @@ std::vector<int> value_histogram(const std::vector<double>& values, double width
   return counts;
 }
 
-nlohmann::json group_json(const Group& g) {
+nlohmann::json group_json(const Group& g, const std::vector<std::string>& class_names) {
   const std::uint64_t known =
       std::accumulate(g.histogram.begin(), g.histogram.end(), std::uint64_t(0));
   nlohmann::json percentiles;
   for (int p : {10, 25, 50, 75, 90, 99})
     percentiles[percentile_key(p)] = histogram_percentile(g.histogram, p / 100.0);
   nlohmann::json shares;
-  for (int c = 0; c < kSemanticClasses; ++c)
-    shares[class_name(SemanticClass(c))] =
-        g.pixels ? double(g.classes[std::size_t(c)]) / g.pixels : 0;
+  for (std::size_t c = 0; c < class_names.size(); ++c)
+    shares[class_names[c]] = g.pixels && c < g.classes.size() ? double(g.classes[c]) / g.pixels : 0;
   return {{"sequences", g.sequences},
           {"frames", g.frames},
           {"flow",
@@ -293,15 +295,17 @@ nlohmann::json group_json(const Group& g) {
           {"turn_share", g.sequences ? double(g.turning) / g.sequences : 0}};
 }
 
-nlohmann::json groups_json(const std::map<std::string, Group>& groups) {
+nlohmann::json groups_json(const std::map<std::string, Group>& groups,
+                           const std::vector<std::string>& class_names) {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& [name, group] : groups) j[name] = group_json(group);
+  for (const auto& [name, group] : groups) j[name] = group_json(group, class_names);
   return j;
 }
 
 }  // namespace
 
-nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequences) {
+nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequences,
+                                  const std::vector<std::string>& class_names) {
   Group all;
   std::map<std::string, Group> per_map, per_weather;
   for (const SequenceStatistics& s : sequences)
@@ -314,9 +318,9 @@ nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequenc
           {"turn_degrees", kTurnDegrees},
           {"ego_speed_bin", kSpeedBin},
           {"yaw_rate_abs_bin", kYawRateBin},
-          {"all", group_json(all)},
-          {"maps", groups_json(per_map)},
-          {"weathers", groups_json(per_weather)}};
+          {"all", group_json(all, class_names)},
+          {"maps", groups_json(per_map, class_names)},
+          {"weathers", groups_json(per_weather, class_names)}};
 }
 
 SequenceStatistics checked_statistics(const fs::path& sequence_dir, const SequenceMeta& meta) {
@@ -329,14 +333,15 @@ SequenceStatistics checked_statistics(const fs::path& sequence_dir, const Sequen
   return s;
 }
 
-nlohmann::json release_statistics(const fs::path& out, const std::vector<std::string>& sequences) {
+nlohmann::json release_statistics(const fs::path& out, const std::vector<std::string>& sequences,
+                                  const std::string& class_table_name) {
   std::vector<SequenceStatistics> recorded;
   for (const std::string& name : sequences) {
     const fs::path dir = sequence_dir(out, name);
     const SequenceMeta meta = read_meta(dir);
     if (meta.statistics.is_object()) recorded.push_back(checked_statistics(dir, meta));
   }
-  return release_statistics(recorded);
+  return release_statistics(recorded, class_table(class_table_name).names);
 }
 
 std::string statistics_summary(const nlohmann::json& statistics) {

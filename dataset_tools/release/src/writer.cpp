@@ -1,3 +1,4 @@
+#include "flowscape/release/classes.h"
 #include "flowscape/release/writer.h"
 
 #include <map>
@@ -28,11 +29,13 @@ using ViewImages = std::map<std::string, AnyImage>;
 
 // The images of one view of a frame, by release kind (layout.h), each in its file's pixel type;
 // truth.more[k] is the flow of step more_steps[k]. A new output kind adds its image here.
+// A view's images, its semantic ids in the release's class table.
 ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
-                       const std::vector<int>& more_steps) {
+                       const std::vector<int>& more_steps, const ClassTable& classes) {
   ViewImages images;
   images.emplace("color", std::move(color));
   images.emplace("flow", std::move(truth.flow));
+  to_table_ids(classes, truth.semantic.view());
   images.emplace("semantic", std::move(truth.semantic));
   images.emplace("instance", std::move(truth.instance));
   images.emplace("depth", std::move(truth.depth));
@@ -119,12 +122,14 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
     const Image<float> color = denoised_cube_color(config, cube);
     erp_color = resample_bilinear(map->sampling, color);
     write_cube(dir, layout, frame, config.frames,
-               view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps));
+               view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps,
+                           class_table(config.classes)));
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
   const ViewImages images =
-      view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps);
+      view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps,
+                  class_table(config.classes));
   write_single_view(dir, layout, View(), frame, config.frames, images);
   return statistics_of(images, frame, config.frames);
 }
@@ -142,7 +147,8 @@ FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout
     const Image<float> color =
         release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
     const ViewImages images =
-        view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps);
+        view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps,
+                    class_table(config.classes));
     write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
     if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
   }
@@ -207,6 +213,9 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("flow_gaps")) recorded["flow_gaps"] = {1};
     if (!recorded.contains("ego_routes")) recorded["ego_routes"] = "free";  // 0.8 and before
     if (!recorded.contains("turn_share")) recorded["turn_share"] = ReleaseConfig{}.turn_share;
+    if (!recorded.contains("actors")) recorded["actors"] = "legacy";  // 0.9 and before
+    if (!recorded.contains("ego")) recorded["ego"] = ReleaseConfig{}.ego;
+    if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
   }
   return recorded;
 }
@@ -251,7 +260,8 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   // last: its 2-D boxes come from the frames' instance images, and it marks the sequence done
   SequenceMeta meta = sequence_meta(sequence, plan, config);
   meta.boxes = boxes_json(dir, layout, config.frames);
-  meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps);
+  meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps,
+                                             class_table(config.classes).size());
   write_meta(dir, meta);
 }
 
@@ -289,7 +299,7 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
     written.manifest = shard_manifest_path(out, config);
     return written;
   }
-  const nlohmann::json statistics = release_statistics(out, sequence_names(config));
+  const nlohmann::json statistics = release_statistics(out, sequence_names(config), config.classes);
   write_dataset_card(out, config, statistics);
   write_manifest(out, config, files, statistics);
   write_explorer(out, out / kExplorerDir, {.progress = true});

@@ -30,6 +30,9 @@ struct TruthRequest {
   FramePair pair;
   std::vector<Moment> more{};
   bool scene_flow = false, normal = false, shading_normal = false;
+  // The camera is one of the rig's (pair.rig is where the rig is, not another viewpoint): parts
+  // fixed to the rig (Part::on_rig, the ego's body) then have exactly zero flow.
+  bool camera_on_rig = false;
 };
 
 struct FlowTruth {

@@ -17,9 +17,19 @@ constexpr int kMapCount = 8;
 // downtown, suburb, highway, rural, roundabout, waterfront, industrial, hilltown
 std::string map_name(int map);
 
-enum class ActorKind : std::uint8_t { Car, Truck, Bus, Bike, Pedestrian };
+// What traffic is made of. Lorry and Motorbike appear with detailed actors only (where legacy
+// ones have trucks and bikes); a Rider is the person on a bike or motorbike, an actor of its own.
+enum class ActorKind : std::uint8_t { Car, Truck, Bus, Bike, Pedestrian, Lorry, Motorbike, Rider };
 std::string kind_name(ActorKind kind);
 ActorKind kind_from_name(const std::string& name);  // throws std::invalid_argument
+
+// How actors look. Detailed: the built-in vehicle families and people (scenes/src/assets/),
+// parked vehicles as actors with instances, the ego vehicle drawn. Legacy: flowscape 0.9's box
+// models, parked cars baked into the static world, no ego (reproduces those releases byte for
+// byte).
+enum class ActorStyle : std::uint8_t { Legacy, Detailed };
+std::string style_name(ActorStyle style);             // "legacy", "detailed"
+ActorStyle style_from_name(const std::string& name);  // throws std::invalid_argument
 
 // How the ego vehicle's start is found. Free: at start point ego_start, choosing its way at
 // junctions as every vehicle does. Drive: its way kept clear of vehicles for kEgoClearAhead metres
@@ -46,6 +56,11 @@ struct CityConfig {
   // User models replacing the built-in ones, by kind name ("car", "pedestrian", ...): glTF
   // (.gltf/.glb) through tinygltf, anything else through assimp.
   std::map<std::string, std::string> models;
+  ActorStyle actors = ActorStyle::Detailed;
+  bool wet = false;  // it rains: people carry umbrellas and wear coats (detailed actors)
+  // The ego vehicle is drawn (detailed actors), clear of these camera centres (rig frame).
+  bool draw_ego = true;
+  std::vector<Vec3> ego_cameras{Vec3::Zero()};
 };
 void validate(const CityConfig& config);  // throws std::invalid_argument naming the bad value
 
@@ -59,8 +74,9 @@ struct StartPoint {
 struct ActorRecord {
   std::uint16_t instance;
   ActorKind kind;
-  int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on
+  int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on; -1: none
   double s, speed;
+  bool parked = false, ego = false;
 };
 
 // How the camera rig sits on the ego, drawn per city seed (per sequence in a release): its height
@@ -84,11 +100,12 @@ struct City {
   CityConfig config;
   Scene scene;
   std::vector<StartPoint> start_points;        // 100 .. 120 per map
-  std::vector<ActorRecord> actors;             // in scene.actors order
+  std::vector<ActorRecord> actors;             // in scene.actors order (weather's follow)
+  std::uint16_t ego_instance = 0;              // the drawn ego vehicle's, or 0
   StartPoint ego_spawn;                        // where the ego starts (EgoRoute)
   int ego_tries = 1;                           // starts tried to find it
   PoseTrack ego;                               // the ego vehicle (x forward, z up, on the road)
-  Eigen::Vector2d ego_size{4.5, 1.9};          // its length and width (it is not drawn)
+  Eigen::Vector2d ego_size{4.5, 1.9};          // its length and width (as traffic sees it)
   std::function<double(double)> ego_distance;  // metres the ego has driven at time t
   RigMount mount;                              // where the camera rig sits on the ego
   // Footprints (4 corners, counter-clockwise) of the buildings and other solid blocks.

@@ -1,6 +1,8 @@
 #pragma once
 // What a renderer needs to know of a scene: triangle meshes with a CARLA class per triangle, and
-// actors whose parts move rigidly with time. Scenes know nothing of the renderer.
+// actors whose parts move rigidly with time or deform (linear blend skinning over a skeleton).
+// Scenes know nothing of the renderer.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -14,7 +16,9 @@ namespace flowscape {
 
 using PoseTrack = std::function<Pose(double t)>;  // t in seconds
 
-// CARLA 0.9.10-0.9.13 semantic classes (design.md).
+// The classes a scene labels its triangles with: CARLA 0.9.10-0.9.13's (design.md), ids 0-22, and
+// finer ones (23-29) that a release writes through its class table (release/classes.h): in the
+// carla-0.9.13 table they become Vehicles, in carla-0.9.14 their own ids.
 enum class SemanticClass : std::uint8_t {
   Unlabeled = 0,
   Building = 1,
@@ -38,8 +42,16 @@ enum class SemanticClass : std::uint8_t {
   Static = 19,
   Dynamic = 20,
   Water = 21,
-  Terrain = 22
+  Terrain = 22,
+  Rider = 23,       // a person on a bicycle or a motorbike
+  Car = 24,         // cars, vans, pickups
+  Truck = 25,       // box trucks, lorries
+  Bus = 26,
+  Motorcycle = 27,
+  Bicycle = 28,
+  EgoVehicle = 29,  // the car the camera rig is mounted on (Cityscapes' "ego vehicle")
 };
+inline constexpr int kSceneClasses = 30;
 
 // Image files of a material (glTF's metallic-roughness model), looked up with mip-mapped filtering
 // at the surface's uv. Colours are sRGB-encoded files; the others hold linear data.
@@ -60,6 +72,10 @@ struct Material {
     Glass,     // smooth dielectric, index 1.5
     Emissive,  // a light: emits `emission`, reflects nothing
     Streak,  // a rain streak: with probability `opacity` glows with `emission`, else lets light by
+    // A thin pane (a car's window): reflects as glass of index 1.5 does at both faces, lets the
+    // rest straight through tinted by `albedo`; the sun shines through it. A surface like any
+    // other to the ground truth (its class, instance, depth and flow are the pane's).
+    Window,
   };
   Kind kind = Kind::Diffuse;
   Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};  // the mean colour (what is seen without textures)
@@ -81,6 +97,11 @@ struct Mesh {
   // Tangents along +u with the bitangent's handedness in w (glTF); empty = from the uvs per
   // triangle
   std::vector<Eigen::Vector4f> tangents;
+  // Linear blend skinning: per vertex up to four bones (indices into the part's BoneTrack) and
+  // their weights (summing to 1); empty = rigid. The vertices above are the rest pose.
+  std::vector<std::array<std::uint8_t, 4>> bones;
+  std::vector<Eigen::Vector4f> weights;
+  bool skinned() const { return !bones.empty(); }
 };
 
 // A participating medium whose extinction falls off with height: sigma(z) = density *
@@ -103,11 +124,33 @@ struct Environment {
   Fog fog;
 };
 
-// A rigid piece of an actor (a car body, a wheel, a leg), posed relative to the actor.
+// Where the bones of a skinned part are at time t: bone k maps the mesh's rest pose to the part's
+// frame, so a vertex is at sum_k w_k bones[k] * rest (then posed with the part).
+using BoneTrack = std::function<std::vector<Pose>(double t)>;
+
+// A piece of an actor (a car body, a wheel, a person's skinned body), posed relative to the actor.
+// Meshes are shared: every part showing the same mesh uses one BVH (a model's four wheels, every
+// car of one model); `materials` then gives each part its own look.
 struct Part {
-  Mesh mesh;
+  std::shared_ptr<const Mesh> mesh;
   PoseTrack pose;
+  BoneTrack bones{};  // empty: rigid; else (mesh->skinned()) the skeleton's poses over time
+  // The scene material of each material slot of the mesh (mesh->materials index it); empty: the
+  // mesh's indices are scene materials.
+  std::vector<std::uint16_t> materials{};
+  // Fixed to the camera rig (the ego vehicle's body): a camera of the rig sees it at the same
+  // pixel at every time, so its flow is exactly zero there.
+  bool on_rig = false;
 };
+inline Part rigid_part(Mesh mesh, PoseTrack pose = [](double) { return Pose::Identity(); }) {
+  return {std::make_shared<const Mesh>(std::move(mesh)), std::move(pose)};
+}
+
+// The material index a part's triangle is drawn with.
+inline std::uint16_t part_material(const Part& part, std::size_t triangle) {
+  const std::uint16_t slot = part.mesh->materials.empty() ? 0 : part.mesh->materials[triangle];
+  return part.materials.empty() ? slot : part.materials[slot];
+}
 
 struct Actor {
   std::uint16_t instance;  // > 0; 0 is the static world

@@ -42,6 +42,18 @@ struct ReleaseConfig {
   // User models replacing the built-in ones, by actor kind (car, truck, bus, bike, pedestrian):
   // glTF through tinygltf, OBJ/FBX/... through assimp, with their textures.
   std::map<std::string, std::string> models;
+  // "detailed": the built-in vehicle families and people, parked vehicles as actors, the ego
+  // vehicle as `ego` says; "legacy": flowscape 0.9's box models (a config.json without the key,
+  // from 0.9 and before, is read so).
+  std::string actors = "detailed";
+  // The ego vehicle under the rig: "on" (drawn, in every camera that sees it), "off", or "auto":
+  // drawn for every rig but the flowscape preset, whose release reproduces FlowScape's CARLA
+  // frames (the car a roof rig stands on would fill the lower hemisphere with still pixels).
+  std::string ego = "auto";
+  // The semantic class table the files are written in (release/classes.h): "carla-0.9.13" (the
+  // default, FlowScape's) or "carla-0.9.14" (with riders, cars, trucks, buses, motorcycles,
+  // bicycles and the ego vehicle apart).
+  std::string classes = "carla-0.9.13";
   std::uint64_t seed = 0;
   bool cube = true;  // also write the six faces (the ERP colour is stitched from them)
   // Output kinds written besides the six every release has (layout.h's pickable rows, or "all"),

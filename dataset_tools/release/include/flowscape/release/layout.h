@@ -198,8 +198,8 @@ std::filesystem::path split_file(const std::filesystem::path& release, const std
 nlohmann::json layout_json(const ReleaseLayout& layout);
 // The conventions of a release's data, as manifest.json and the dataset card state them for
 // programs to read (docs/release.md, "Conventions"): flow direction, units, axes, the ERP seam,
-// sky and invalid values, depth, frames and time.
-nlohmann::json conventions_json();
+// sky and invalid values, depth, frames and time, the semantic class table (classes.h).
+nlohmann::json conventions_json(const std::string& class_table_name = "carla-0.9.13");
 // The kinds a manifest's layout lists (a release from before they were listed: FlowScape's six);
 // throws std::invalid_argument for kinds it does not know.
 ReleaseLayout layout_from_json(const nlohmann::json& layout);

@@ -71,6 +71,8 @@ nlohmann::json read_json(const std::filesystem::path& path);
 // The kinds and views <release>/manifest.json states (a release without one, or from before the
 // kinds were listed: FlowScape's six, ERP and faces); a layout it cannot read is a FileError.
 ReleaseLayout read_release_layout(const std::filesystem::path& release);
+// The class table its manifest's conventions name (carla-0.9.13 where they name none).
+std::string read_release_class_table(const std::filesystem::path& release);
 
 // <sequence dir>/meta.json; errors are FileErrors naming the file.
 SequenceMeta read_meta(const std::filesystem::path& sequence_dir);

@@ -23,6 +23,9 @@ struct SequenceSpec {
   EgoRoute ego_route = EgoRoute::Drive;
   int frames = 100;
   std::map<std::string, std::string> models;  // ReleaseConfig::models
+  ActorStyle actors = ActorStyle::Detailed;
+  bool draw_ego = true;
+  std::vector<Vec3> ego_cameras{Vec3::Zero()};  // the rig's optical centres (rig frame)
 };
 // The spec of a planned sequence of a release (its ego start follows from its seed, its route
 // from the plan's `turns`).
@@ -65,9 +68,12 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
 // instance images (meta.h's instance_boxes).
 SequenceMeta sequence_meta(const Sequence& sequence, const SequencePlan& plan,
                            const ReleaseConfig& config);
-// Every actor of the traffic per frame: instance, kind, class, 3-D box in the world and the rig,
-// velocities (docs/release.md, "meta.json").
-nlohmann::json actor_records(const Sequence& sequence, int frames);
+// Every actor (traffic, riders, parked vehicles, the ego) per frame: instance, kind, class (in the
+// class table `classes`), 3-D box in the world and the rig, velocities; detailed actors also
+// their fixed box (the extent of their deforming parts over the frames, in the actor's frame)
+// and flags for parked and ego (docs/release.md, "meta.json").
+nlohmann::json actor_records(const Sequence& sequence, int frames,
+                             const std::string& classes = "carla-0.9.13");
 // What a frame's ground truth needs for the layout's kinds: the pair to the next frame, a target in
 // `more` for every other flow step the frame has (layout.h's flow_steps), the vector kinds.
 struct TruthPlan {

@@ -22,7 +22,7 @@ namespace flowscape {
 // 1024 / its width): [0, 1/16), then eighth-octave bins from 1/16 to 1024, then [1024, inf).
 // The edges, 0 first; bin k holds [edges[k], edges[k + 1]), the last one everything above.
 const std::vector<double>& flow_bin_edges();
-inline constexpr int kSemanticClasses = 23;  // CARLA's ids 0..22
+inline constexpr int kSemanticClasses = 30;  // room for every class table's ids (classes.h)
 inline constexpr double kTurnDegrees = 45;   // a sequence "turns" when its yaw changes this much
 
 struct FrameStatistics {
@@ -47,15 +47,16 @@ View statistics_view(const ReleaseLayout& layout);
 
 // meta.json's "statistics" of a sequence from its frames' statistics and rig poses
 // (rig -> world, x forward, z up) at `fps`.
+// `classes`: the class table's size (class_pixels holds that many ids).
 nlohmann::json sequence_statistics_json(const View& view,
                                         const std::vector<FrameStatistics>& frames,
-                                        const std::vector<Pose>& poses, double fps);
+                                        const std::vector<Pose>& poses, double fps, int classes);
 
 // The same from a sequence's files, for a release from before meta.json recorded them.
 nlohmann::json sequence_statistics_from_files(const std::filesystem::path& sequence_dir,
                                               const ReleaseLayout& layout,
                                               const std::vector<Pose>& poses, int frames,
-                                              double fps);
+                                              double fps, int classes);
 
 // manifest.json's "statistics": per map, per weather (the paper's four) and over all the
 // sequences given (null when there are none).
@@ -64,14 +65,18 @@ struct SequenceStatistics {
   int frames = 0;
   nlohmann::json statistics;  // sequence_statistics_json's
 };
-nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequences);
+// Class shares are named by `class_names` (the release's class table).
+nlohmann::json release_statistics(const std::vector<SequenceStatistics>& sequences,
+                                  const std::vector<std::string>& class_names);
 // A sequence's record from its meta.json (read from `sequence_dir`), checked: a record
 // release_statistics cannot read is a FileError naming the meta.json.
 SequenceStatistics checked_statistics(const std::filesystem::path& sequence_dir,
                                       const SequenceMeta& meta);
-// Of the sequences of the release in `out` that have statistics in their meta.json.
+// Of the sequences of the release in `out` that have statistics in their meta.json (class
+// shares named by the class table its manifest names, or `class_table` before it has one).
 nlohmann::json release_statistics(const std::filesystem::path& out,
-                                  const std::vector<std::string>& sequences);
+                                  const std::vector<std::string>& sequences,
+                                  const std::string& class_table);
 // A few lines per map and over the release: flow percentiles, ego speed, turning sequences.
 std::string statistics_summary(const nlohmann::json& statistics);
 

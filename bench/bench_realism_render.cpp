@@ -1,0 +1,98 @@
+// bench_realism_render OUT [face size = 384] [frames = 10,60] [config.json]: the fixed set the
+// actor-realism benchmark (bench/detector/bench_detector.py) runs a detector on. One sequence of
+// each of the 8 maps (the release's first sequence of the map, its seed, ego route and traffic),
+// the release's weather mix spread over the 8 (sunny x5, cloud, fog, rain), the six cube faces of
+// two frames as the release renders them (colour denoised, sRGB), each with its instance and
+// semantic image, and actors.json (every instance's kind and class). A config.json (the
+// gen_flowscape config keys) changes what the release would change (actor models, class table...).
+#include <tbb/parallel_for.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/srgb.h"
+#include "flowscape/release/config.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/scenes/actors.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<int> parse_frames(const std::string& list) {
+  std::vector<int> frames;
+  std::stringstream in(list);
+  for (std::string item; std::getline(in, item, ',');) frames.push_back(std::stoi(item));
+  return frames;
+}
+
+template <class T>
+void write_faces(const fs::path& dir, const std::string& kind, const Image<T>& cube) {
+  for (Face face : kFaces)
+    write_image(dir / (std::string(face_name(face)) + "_" + kind + ".png"),
+                face_view(cube.view(), face));
+}
+
+nlohmann::json actor_list(const Sequence& sequence) {
+  nlohmann::json actors = nlohmann::json::object();
+  const auto& records = sequence.city.actors;
+  for (std::size_t a = 0; a < sequence.city.scene.actors.size(); ++a) {
+    const Actor& actor = sequence.city.scene.actors[a];
+    if (actor.color_only) continue;
+    const std::string kind = a < records.size() ? kind_name(records[a].kind) : "other";
+    actors[std::to_string(actor.instance)] = {{"kind", kind},
+                                              {"class", int(actor_class(actor))}};
+  }
+  return actors;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_realism_render OUT [face size] [frames] [config.json]\n");
+    return 2;
+  }
+  try {
+    const fs::path out = argv[1];
+    const int face_size = argc > 2 ? std::atoi(argv[2]) : 384;
+    const std::vector<int> frames = parse_frames(argc > 3 ? argv[3] : "10,60");
+    ReleaseConfig config;
+    if (argc > 4) config = resolve_config({false, argv[4]});
+    const std::vector<std::string> mix = ReleaseConfig{}.weathers;
+    config.maps = kMapCount, config.sequences_per_map = 1;
+    config.frames = *std::max_element(frames.begin(), frames.end()) + 1;
+    for (const SequencePlan& plan : plan_sequences(config)) {
+      SequenceSpec spec = sequence_spec(config, plan);
+      spec.weather = mix[std::size_t(plan.map) % mix.size()];
+      const Sequence sequence = make_sequence(spec);
+      Renderer renderer(sequence.city.scene);
+      for (int frame : frames) {
+        const fs::path dir = out / (plan.name + "_" + std::to_string(frame));
+        fs::create_directories(dir);
+        const TruthRequest request{sequence.frame_pair(frame)};
+        const RenderOptions options = sequence.color_options(config, frame);
+        const CubeFrame cube = render_cube(renderer, face_size, request, &options);
+        write_faces(dir, "color", linear_to_srgb8(denoised_cube_color(config, cube).view()));
+        write_faces(dir, "instance", cube.truth.instance);
+        write_faces(dir, "semantic", cube.truth.semantic);
+        std::ofstream(dir / "actors.json")
+            << nlohmann::json{{"map", map_name(plan.map)},
+                              {"weather", spec.weather},
+                              {"actors", actor_list(sequence)}}
+                   .dump();
+        std::printf("%s frame %d (%s)\n", plan.name.c_str(), frame, spec.weather.c_str());
+        std::fflush(stdout);
+      }
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_realism_render: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,89 @@
+#include "vehicles.h"
+
+#include "car_parts.h"
+
+namespace flowscape::assets {
+
+std::string family_name(Family family) {
+  static const char* const kNames[kFamilies] = {
+      "hatchback", "saloon", "estate", "suv", "pickup", "van", "city_bus", "box_truck", "lorry",
+      "motorbike", "bicycle"};
+  return kNames[int(family)];
+}
+
+SemanticClass family_class(Family family) {
+  switch (family) {
+    case Family::CityBus: return SemanticClass::Bus;
+    case Family::BoxTruck:
+    case Family::Lorry: return SemanticClass::Truck;
+    case Family::Motorbike: return SemanticClass::Motorcycle;
+    case Family::Bicycle: return SemanticClass::Bicycle;
+    default: return SemanticClass::Car;
+  }
+}
+
+Mesh labelled(Mesh mesh, SemanticClass cls) {
+  std::fill(mesh.classes.begin(), mesh.classes.end(), cls);
+  return mesh;
+}
+
+int add_wheel_meshes(VehicleModel& model, double radius, double width, double rim_share) {
+  const SemanticClass cls = family_class(model.family);
+  for (int side : {1, -1})
+    model.wheels.push_back(
+        std::make_shared<const Mesh>(labelled(road_wheel(radius, width, rim_share, side), cls)));
+  model.wheel_radius.insert(model.wheel_radius.end(), 2, radius);
+  return int(model.wheels.size()) - 2;
+}
+
+VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width) {
+  return finish_car(family, shape, tyre_width, vehicle_body(shape));
+}
+
+VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width, Mesh body) {
+  VehicleModel model;
+  model.family = family;
+  model.length = shape.length, model.width = shape.width;
+  double top = 0;
+  for (double x = -shape.length / 2; x <= shape.length / 2; x += 0.05)
+    if (shape.top(x) > top) top = shape.top(x), model.roof_x = x;
+  model.height = top + shape.crown, model.roof_z = model.height;
+  model.body = std::make_shared<const Mesh>(labelled(std::move(body), family_class(family)));
+  const int left = add_wheel_meshes(model, shape.wheel_radius, tyre_width, 0.62);
+  const double track = shape.width / 2 - tyre_width / 2 - 0.04;
+  for (double axle : shape.axles)
+    for (int side : {1, -1})
+      model.mounts.push_back({V3(axle, side * track, shape.wheel_radius), axle > 0, false,
+                              side > 0 ? left : left + 1});
+  model.wheelbase = shape.axles.back() - shape.axles.front();
+  return model;
+}
+
+VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
+  switch (family) {
+    case Family::CityBus:
+    case Family::BoxTruck:
+    case Family::Lorry: return heavy_family(family, variant);
+    case Family::Motorbike:
+    case Family::Bicycle: return two_wheeler_family(family, variant);
+    default: return car_family(family, variant, mirrors);
+  }
+}
+
+Mesh livery_roof(Livery livery) {
+  Mesh mesh;
+  using C = SemanticClass;
+  if (livery == Livery::Taxi) {
+    add_rounded_box(mesh, Pose(Eigen::Translation3d(0, 0, 0.09)), V3(0.12, 0.3, 0.08), 0.03,
+                    C::Car, kLivery, 2);
+  } else if (livery == Livery::Police) {
+    add_rounded_box(mesh, Pose(Eigen::Translation3d(0, 0, 0.06)), V3(0.14, 0.55, 0.05), 0.03,
+                    C::Car, kTrim, 2);
+    for (double side : {-1.0, 1.0})
+      add_rounded_box(mesh, Pose(Eigen::Translation3d(0, side * 0.3, 0.11)), V3(0.1, 0.22, 0.04),
+                      0.02, C::Car, side > 0 ? kIndicator : kLivery, 2);
+  }
+  return mesh;
+}
+
+}  // namespace flowscape::assets
