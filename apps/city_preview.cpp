@@ -55,8 +55,10 @@ FramePair plan_view(const City& city, double time) {
 // One row of the plan sheet: colour and semantics of map `map` seen from above.
 std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence({map, "sunny", o.seed, o.vehicles, o.pedestrians,
-                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
+  SequenceSpec spec{map, "sunny", o.seed, o.vehicles, o.pedestrians,
+                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
+  set_actors(spec, o.color);
+  const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
   const Projection camera = Projection::pinhole(o.height, o.height, 40);
@@ -69,8 +71,10 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
 // nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence({map, weather, o.seed, o.vehicles, o.pedestrians,
-                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
+  SequenceSpec spec{map, weather, o.seed, o.vehicles, o.pedestrians,
+                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
+  set_actors(spec, o.color);
+  const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
@@ -103,8 +107,10 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     return rows;
   }
   const int frame = int(std::lround(o.time * kFrameRate));
-  const Sequence sequence = make_sequence({map, "sunny", o.seed, o.vehicles, o.pedestrians,
-                                           o.ego_start, EgoRoute::Free, frame + 2, o.models});
+  SequenceSpec spec{map, "sunny", o.seed, o.vehicles, o.pedestrians,
+                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
+  set_actors(spec, config);
+  const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   std::vector<std::vector<Image<std::uint8_t>>> rows;
   for (const RigCamera& camera : rig.cameras) {
@@ -166,6 +172,14 @@ int main(int argc, char** argv) {
   app.add_flag("--plan", o.plan,
                "each map seen from above (colour and semantics, --height pixels square) instead "
                "of from the ego");
+  app.add_option("--actor-style", o.color.actors,
+                 "detailed (the built-in vehicle families and people) or legacy (flowscape 0.9's "
+                 "boxes), as gen_flowscape --actors")
+      ->check(CLI::IsMember({"detailed", "legacy"}))
+      ->capture_default_str();
+  app.add_option("--ego", o.color.ego, "the ego vehicle: auto, on or off, as gen_flowscape --ego")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   app.add_flag("--actors", o.actors,
                "the gallery of built-in actor models instead: one row per model seen from the "
                "front, side, back and three-quarters, and its semantics, --height pixels high");

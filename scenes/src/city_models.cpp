@@ -327,9 +327,10 @@ Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<c
   for (Family family : {Family::Estate, Family::Hatchback})
     for (bool mirrors : {true, false}) {
       const VehicleModel model = build_vehicle(family, 0, mirrors);
-      double sz = 1;
+      double sz = 1;  // lowered (to 85 %) under cameras above the roof
       for (const V3& c : seen)
-        if (std::abs(c.x()) < model.length / 2 && std::abs(c.y()) < model.width / 2)
+        if (std::abs(c.x()) < model.length / 2 && std::abs(c.y()) < model.width / 2 &&
+            c.z() > 0.85 * model.roof_z)
           sz = std::min(sz, (c.z() - 2 * kEgoClearance) / model.roof_z);
       for (double sx : {1.0, 0.95, 0.9, 0.85})
         for (double shift : {0.0, -0.1, 0.1, -0.2, 0.2, -0.3, 0.3}) {

@@ -27,14 +27,19 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
                                                 : EgoRoute::Drive,
                     config.frames,
                     config.models};
+  set_actors(spec, config);
+  return spec;
+}
+
+void set_actors(SequenceSpec& spec, const ReleaseConfig& config) {
   spec.actors = style_from_name(config.actors);
   const Rig rig = release_rig(config);
   spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.cameras.empty());
+  spec.ego_cameras = {Vec3::Zero()};
   if (!rig.cameras.empty()) {
     spec.ego_cameras.clear();
     for (const RigCamera& camera : rig.cameras) spec.ego_cameras.push_back(camera.position);
   }
-  return spec;
 }
 
 FramePair Sequence::frame_pair(int frame) const {

@@ -30,6 +30,9 @@ struct SequenceSpec {
 // The spec of a planned sequence of a release (its ego start follows from its seed, its route
 // from the plan's `turns`).
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);
+// The release's actors and ego vehicle in a spec: the actor style, whether the ego is drawn
+// (ReleaseConfig::ego) and the cameras it must keep clear of (the release's rig).
+void set_actors(SequenceSpec& spec, const ReleaseConfig& config);
 
 struct Sequence {
   SequenceSpec spec;
