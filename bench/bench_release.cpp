@@ -1,8 +1,9 @@
 // Release throughput: seconds per frame of the default FlowScape release (512 x 1024 ERP, six
 // 256^2 cube faces, every modality written; colour at the default samples, denoised) on one
 // sequence, and the projected time of the full 6,400-frame release on 2 cores (target: at most
-// 2.7 h, about 1.5 s per frame). Baseline in the same run: the raw path tracer at 16 spp, the
-// release's colour before the denoiser.
+// 2.7 h, about 1.5 s per frame). Baselines in the same run: the raw path tracer at 16 spp, the
+// release's colour before the denoiser, and the legacy actors (flowscape 0.9's boxes): the
+// detailed actors' cost over them (target: at most 15 %).
 // Usage: bench_release [frames = 4] [threads = 2]
 #include <tbb/global_control.h>
 
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
   std::printf("bench_release: %d frames of map00_seq00, %d threads, %d x %d ERP, %d^2 faces\n",
               frames, threads, config.height, 2 * config.height, config.face_size);
   const double release = seconds_per_frame(config, out);
+  ReleaseConfig legacy = config;
+  legacy.actors = "legacy";
+  const double boxes = seconds_per_frame(legacy, out);
   ReleaseConfig raw = config;
   raw.spp = raw.indirect_spp = 16, raw.denoise = "none";  // every sample indirect
   const double baseline = seconds_per_frame(raw, out);
@@ -49,6 +53,9 @@ int main(int argc, char** argv) {
               config.spp, indirect_samples(config), release, hours(release));
   std::printf("  baseline: 16 spp raw                     %6.2f s/frame  full release %5.2f h\n",
               baseline, hours(baseline));
+  std::printf("  legacy actors (flowscape 0.9's boxes)    %6.2f s/frame: detailed actors cost %+.1f %% "
+              "(target <= +15 %%)\n",
+              boxes, 100 * (release / boxes - 1));
   std::printf("  %d frames: %.2f h, %.2fx the baseline (target <= 2.7 h on 2 cores)\n", full_frames,
               hours(release), release / baseline);
   return 0;

@@ -41,12 +41,20 @@ void copy_vertices(const Mesh& mesh, float* vertices) {
     for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.vertices[i][c];
 }
 
-// A BVH of one mesh; `refit`: its vertices will move (skinned), the tree is refitted, not rebuilt.
-RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, bool refit,
+// How a BVH is built: once for the world, once for an actor's mesh that many actors share (worth
+// the slower, better build), or refitted per posed time (skinned).
+enum class Build { World, Shared, Refit };
+
+// A BVH of one mesh.
+RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, Build build,
                    RTCGeometry* geometry_out = nullptr) {
   RTCScene bvh = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (refit) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+  if (build == Build::Refit) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+  if (build == Build::Shared) {
+    rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_HIGH);
+    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
+  }
   copy_vertices(mesh, static_cast<float*>(rtcSetNewGeometryBuffer(
                           geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                           3 * sizeof(float), mesh.vertices.size())));
@@ -184,7 +192,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     // shared by every part showing the mesh (one whose alpha mask depends on its materials: its
     // own; windows are taken to be windows in every part showing a mesh, as the models' are)
     auto& bvh = built[{ref.rest, alpha ? ref.slots : nullptr}];
-    if (!bvh) bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr, false);
+    if (!bvh)
+      bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr,
+                      ref.actor < 0 ? Build::World : Build::Shared);
     else rtcRetainScene(bvh);
     bvhs_.push_back(bvh);
   }
@@ -214,7 +224,7 @@ EmbreeScene::PosedScene EmbreeScene::posed_scene() {
     const auto masked = std::find_if(masked_.begin(), masked_.end(),
                                      [&](const MaskedMesh& m) { return m.ref == &ref; });
     Deformed d{*ref.rest};
-    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, true,
+    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, Build::Refit,
                       &d.geometry);
     posed.deformed.push_back(std::move(d));
   }

@@ -131,10 +131,12 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   if (m.kind == Material::Kind::Window) {
     // the sky it mirrors (both faces' Fresnel reflection, taken whole rather than sampled: a
     // window would speckle otherwise), and straight through, tinted, to what lies behind: the
-    // first surface then
+    // first surface then. Light scattered in from a dark cabin is too little to follow: paths that
+    // bounced before end at the pane.
     const double f = schlick(std::abs(dir.dot(s.normal)), 0.04), reflected = 2 * f / (1 + f);
     path.light[first ? kSpecular : path.layer] +=
         throughput.cwiseProduct(lights.sky_radiance(reflect(dir, s.normal))) * reflected;
+    if (path.layer == kIndirect) return false;
     throughput = throughput.cwiseProduct(s.albedo) * (1 - reflected);
     origin = s.position + offset * dir;
     return true;

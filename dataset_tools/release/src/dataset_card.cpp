@@ -8,7 +8,6 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/formats/semantic_viz.h"
 #include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
@@ -229,7 +228,9 @@ void write_dataset_card(const fs::path& out, const ReleaseConfig& config,
   for (const SequencePlan& plan : first_of_each_weather(config)) {
     std::vector<std::vector<Image<std::uint8_t>>> rows;  // the ERP, or each camera of the rig
     for (const View& view : layout.views())
-      if (!view.face) rows.push_back(frame_preview_row(sequence_dir(out, plan.name), 0, 512, view));
+      if (!view.face)
+        rows.push_back(
+            frame_preview_row(sequence_dir(out, plan.name), 0, 512, view, config.classes));
     write_image(out / example_file(plan.weather), contact_sheet(rows));
     examples.push_back(plan.weather);
   }

@@ -13,7 +13,6 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/formats/semantic_viz.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/split.h"
 #include "flowscape/release/statistics.h"
@@ -94,7 +93,7 @@ Image<std::uint8_t> instance_preview(const Image<std::uint16_t>& ids) {
 
 // A kind's file as an RGB image to look at.
 Image<std::uint8_t> kind_preview(const fs::path& dir, const ReleaseKind& kind, const View& view,
-                                 int frame) {
+                                 int frame, const ClassTable& table) {
   const fs::path file = dir / frame_file(kind, view, frame);
   const std::string_view name = kind.row->name;
   if (kind.row->is_flow()) {
@@ -108,7 +107,7 @@ Image<std::uint8_t> kind_preview(const fs::path& dir, const ReleaseKind& kind, c
     return flow_to_color(flow.uv.view(), valid.view(), {});
   }
   if (name == "color") return read_image<std::uint8_t>(file);
-  if (name == "semantic") return semantic_to_color(read_image<std::uint8_t>(file).view());
+  if (name == "semantic") return table_colours(table, read_image<std::uint8_t>(file).view());
   if (kind.row->pixel == PixelType::UInt8) return mask_preview(read_image<std::uint8_t>(file));
   if (kind.row->pixel == PixelType::UInt16)
     return instance_preview(read_image<std::uint16_t>(file));
@@ -220,7 +219,7 @@ nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
       for (const ReleaseKind& kind : kinds_of(layout, view))
         if (kind.has_frame(frame, s->meta.frames))
           write_image(out / preview_file(s->info.name, view, kind, frame),
-                      shrink_to_width(kind_preview(dir, kind, view, frame), width));
+                      shrink_to_width(kind_preview(dir, kind, view, frame, table), width));
     }
     if (progress) progress->advance();
   });

@@ -4,14 +4,14 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/formats/semantic_viz.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
 
 std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width,
-                                                   const View& view) {
+                                                   const View& view, const std::string& classes) {
   const auto file = [&](const char* kind) {
     return dir / frame_file(output_kind(kind), view, frame);
   };
@@ -24,7 +24,7 @@ std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int fram
   }
   const Image<std::uint8_t> semantic = read_image<std::uint8_t>(file("semantic"));
   return {shrink_to_width(color, width), shrink_to_width(flow, width),
-          shrink_to_width(semantic_to_color(semantic.view()), width)};
+          shrink_to_width(table_colours(class_table(classes), semantic.view()), width)};
 }
 
 }  // namespace flowscape

@@ -138,6 +138,25 @@ void add_grid(Mesh& mesh, const Grid& grid, const std::function<QuadPaint(int, i
         triangles.push_back(tri);
       }
     }
+  // a section folding back on its neighbour (where a ring collapses) leaves coincident triangles
+  // facing each other: they cancel, and dropping both keeps the surface closed
+  std::map<std::array<int, 3>, std::vector<int>> by_corners;
+  for (int t = 0; t < int(triangles.size()); ++t) {
+    std::array<int, 3> key = triangles[t].position;
+    std::sort(key.begin(), key.end());
+    by_corners[key].push_back(t);
+  }
+  std::vector<bool> dropped(triangles.size(), false);
+  for (const auto& [key, same] : by_corners)
+    for (std::size_t i = 0; i < same.size(); ++i)
+      for (std::size_t j = i + 1; j < same.size(); ++j)
+        if (!dropped[same[i]] && !dropped[same[j]] &&
+            triangles[same[i]].normal.dot(triangles[same[j]].normal) < 0)
+          dropped[same[i]] = dropped[same[j]] = true;
+  std::vector<GridTriangle> kept;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (!dropped[t]) kept.push_back(triangles[t]);
+  triangles = std::move(kept);
   // smooth normals: at each corner the area-weighted normals of the triangles of its slot round
   // its position that turn from its own by less than the crease angle
   std::vector<std::vector<int>> around_position(welded.size());
@@ -277,6 +296,32 @@ void append_with_skin(Mesh& mesh, const Mesh& part, const Pose& pose) {
     mesh.classes.push_back(part.classes[t]);
     mesh.materials.push_back(part.materials.empty() ? 0 : part.materials[t]);
   }
+}
+
+std::pair<Mesh, Mesh> split_by_slot(const Mesh& mesh, std::uint16_t slot) {
+  Mesh parts[2];
+  std::vector<int> index[2] = {std::vector<int>(mesh.vertices.size(), -1),
+                               std::vector<int>(mesh.vertices.size(), -1)};
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const int side = mesh.materials[t] == slot ? 1 : 0;
+    Mesh& out = parts[side];
+    Eigen::Vector3i tri;
+    for (int c = 0; c < 3; ++c) {
+      int& v = index[side][std::size_t(mesh.triangles[t][c])];
+      if (v < 0) {
+        v = int(out.vertices.size());
+        const std::size_t from = std::size_t(mesh.triangles[t][c]);
+        out.vertices.push_back(mesh.vertices[from]);
+        if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[from]);
+        if (!mesh.uvs.empty()) out.uvs.push_back(mesh.uvs[from]);
+      }
+      tri[c] = v;
+    }
+    out.triangles.push_back(tri);
+    out.classes.push_back(mesh.classes[t]);
+    out.materials.push_back(mesh.materials[t]);
+  }
+  return {std::move(parts[0]), std::move(parts[1])};
 }
 
 Closure closure(const Mesh& mesh) {

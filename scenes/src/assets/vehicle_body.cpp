@@ -12,9 +12,9 @@ namespace {
 using C = SemanticClass;
 
 // Section heights as shares of the flank (sill to belt) and of the glass (belt to roof).
-constexpr double kFlankShares[] = {0, 0.02, 0.06, 0.12, 0.2, 0.3, 0.42, 0.55, 0.68, 0.8, 0.9, 0.96, 1};
-constexpr double kGlassShares[] = {0, 0.06, 0.2, 0.4, 0.6, 0.8, 0.9, 0.96, 1};
-constexpr int kBottomPoints = 3, kTopPoints = 5;
+constexpr double kFlankShares[] = {0, 0.03, 0.09, 0.18, 0.32, 0.5, 0.68, 0.84, 0.94, 1};
+constexpr double kGlassShares[] = {0, 0.06, 0.25, 0.5, 0.75, 0.92, 1};
+constexpr int kBottomPoints = 3, kTopPoints = 4;
 constexpr int kFlankPoints = int(std::size(kFlankShares)), kGlassPoints = int(std::size(kGlassShares));
 constexpr int kFirstFlank = kBottomPoints, kFirstGlass = kFirstFlank + kFlankPoints,
               kFirstTop = kFirstGlass + kGlassPoints, kHalfRing = kFirstTop + kTopPoints;
@@ -26,14 +26,14 @@ bool between(double x, double a, double b) { return x >= std::min(a, b) && x <= 
 std::vector<double> stations(const BodyShape& s) {
   const double a = s.length / 2;
   std::vector<double> x;
-  constexpr int kPlan = 48;
+  constexpr int kPlan = 36;
   for (int k = 0; k <= kPlan; ++k) {
     const double c = std::cos(kPi * k / kPlan);
     x.push_back(-a * std::copysign(std::pow(std::abs(c), 2 / s.plan_exponent), c));
   }
   const double arch = s.wheel_radius + s.arch_clearance;
   for (double axle : s.axles)
-    for (int k = -10; k <= 10; ++k) x.push_back(axle + arch * std::sin(kPi / 2 * k / 10.0));
+    for (int k = -7; k <= 7; ++k) x.push_back(axle + arch * std::sin(kPi / 2 * k / 7.0));
   const Glazing& g = s.glazing;
   for (double e : {g.windscreen_front, g.windscreen_back, g.rear_front, g.rear_back, g.side_front,
                    g.side_back})
@@ -88,7 +88,7 @@ QuadPaint shell_paint(const BodyShape& s, const BodyFrame& f, const Grid& grid, 
   const double ends = s.axles.empty() ? s.length / 2 : std::max(std::abs(s.axles.front()),
                                                                   std::abs(s.axles.back()));
   if (j < kFirstGlass)  // the flank: black trim low down at the bumpers
-    return paint(z < f.bottom(x) + s.trim_height && std::abs(x) > ends ? kTrim : kPaint);
+    return paint(z < s.bottom(x) + s.trim_height && std::abs(x) > ends ? kTrim : kPaint);
   if (j == kFirstGlass) return paint(kPaint);  // the shoulder
   const double glass_height = f.top(x) - f.belt(x);
   if (j < kFirstTop) {

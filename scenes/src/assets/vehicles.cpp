@@ -59,7 +59,9 @@ VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width
   return model;
 }
 
-VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
+namespace {
+
+VehicleModel family_model(Family family, int variant, bool mirrors) {
   switch (family) {
     case Family::CityBus:
     case Family::BoxTruck:
@@ -68,6 +70,16 @@ VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
     case Family::Bicycle: return two_wheeler_family(family, variant);
     default: return car_family(family, variant, mirrors);
   }
+}
+
+}  // namespace
+
+VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
+  VehicleModel model = family_model(family, variant, mirrors);
+  auto [body, windows] = split_by_slot(*model.body, kGlass);
+  model.body = std::make_shared<const Mesh>(std::move(body));
+  if (!windows.triangles.empty()) model.windows = std::make_shared<const Mesh>(std::move(windows));
+  return model;
 }
 
 Mesh livery_roof(Livery livery) {

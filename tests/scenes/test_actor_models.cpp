@@ -1,0 +1,196 @@
+// The detailed actor models (scenes/src/assets, internal): closed, outward-facing bodies, feet
+// that stay put while they bear weight, riders on their bikes, parked vehicles and the ego as
+// actors with instances.
+#include <catch2/catch.hpp>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "assets/gait.h"
+#include "assets/loft.h"
+#include "assets/people.h"
+#include "assets/vehicles.h"
+#include "flowscape/scenes/actors.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/scenes/shapes.h"
+#include "flowscape/scenes/skinning.h"
+
+using namespace flowscape;
+using namespace flowscape::assets;
+
+namespace {
+
+// The connected parts of a mesh (triangles sharing a welded vertex), each as a mesh.
+std::vector<Mesh> components(const Mesh& mesh) {
+  std::map<std::array<float, 3>, int> ids;
+  std::vector<int> id(mesh.vertices.size());
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    id[v] = ids.try_emplace({mesh.vertices[v].x(), mesh.vertices[v].y(), mesh.vertices[v].z()},
+                            int(ids.size()))
+                .first->second;
+  std::vector<int> parent(ids.size());
+  for (std::size_t k = 0; k < parent.size(); ++k) parent[k] = int(k);
+  const std::function<int(int)> root = [&](int k) {
+    return parent[std::size_t(k)] == k ? k : parent[std::size_t(k)] = root(parent[std::size_t(k)]);
+  };
+  for (const Eigen::Vector3i& t : mesh.triangles)
+    for (int c = 1; c < 3; ++c) parent[std::size_t(root(id[t[c]]))] = root(id[t[0]]);
+  std::map<int, Mesh> parts;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    Mesh& part = parts[root(id[mesh.triangles[t][0]])];
+    for (int c = 0; c < 3; ++c) part.vertices.push_back(mesh.vertices[mesh.triangles[t][c]]);
+    const int n = int(part.vertices.size());
+    part.triangles.emplace_back(n - 3, n - 2, n - 1);
+  }
+  std::vector<Mesh> out;
+  for (auto& [root_id, part] : parts) out.push_back(std::move(part));
+  return out;
+}
+
+std::size_t largest(const std::vector<Mesh>& parts) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < parts.size(); ++k)
+    if (parts[k].triangles.size() > parts[best].triangles.size()) best = k;
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("every vehicle's shell and wheels are closed and face outwards") {
+  for (int f = 0; f < kFamilies; ++f)
+    for (int variant = 0; variant < kVariants; ++variant) {
+      const Family family = Family(f);
+      INFO(family_name(family) << " variant " << variant);
+      const VehicleModel model = build_vehicle(family, variant);
+      if (family != Family::Bicycle && family != Family::Motorbike) {
+        // the lofted shell: the body's largest part (lorries and trucks: the cab's)
+        Mesh whole = *model.body;
+        if (model.windows) append_mesh(whole, *model.windows);
+        const std::vector<Mesh> parts = components(whole);
+        const Closure shell = closure(parts[largest(parts)]);
+        CHECK(shell.watertight);
+        CHECK(shell.volume > 0.5);
+      }
+      for (const auto& wheel : model.wheels)
+        for (const Mesh& part : components(*wheel)) {
+          const Closure c = closure(part);
+          CHECK(c.watertight);
+          CHECK(c.volume > 0);
+        }
+      CHECK(model.length > 1.5);
+      CHECK(model.body->classes.front() == family_class(family));
+    }
+}
+
+TEST_CASE("a person's body, limbs, hands, head and shoes are closed and face outwards") {
+  Random random(5);
+  for (int k = 0; k < 12; ++k) {
+    const Look look = random_look(random, k % 4 == 3, k % 3 == 0);
+    const PersonModel person = build_person(look, SemanticClass::Pedestrian);
+    INFO("person " << k);
+    int closed = 0;
+    for (const Mesh& part : components(*person.mesh)) {
+      const Closure c = closure(part);
+      if (!c.watertight) continue;  // hair, skirts and coats are open shells
+      CHECK(c.volume > 0);
+      ++closed;
+    }
+    CHECK(closed >= 12);  // torso, neck, head, nose, 2 ears, 2 eyes, 2 legs, 2 arms, 2 shoes...
+    require_valid_skin(*person.mesh, kBones, "person");
+  }
+}
+
+TEST_CASE("a walking foot does not slide while it bears weight, and the leg reaches it") {
+  // a walker on a quarter circle of 6 m radius at 1.4 m/s, sampled as traffic samples
+  Track track{1.0 / 60, {}, {}};
+  const double radius = 6, speed = 1.4;
+  for (int k = 0; k <= 600; ++k) {
+    const double t = k * track.step, angle = speed * t / radius;
+    Pose pose = Pose(Eigen::Translation3d(radius * std::sin(angle), radius * (1 - std::cos(angle)), 0.15)) *
+                Pose(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+    track.poses.push_back(pose), track.distance.push_back(speed * t);
+  }
+  const auto shared = std::make_shared<const Track>(track);
+  Random random(3);
+  const PersonModel person = build_person(random_look(random, false, false), SemanticClass::Pedestrian);
+  const Gait gait = gait_for(person.skeleton, speed, 11, false);
+  const BoneTrack bones = walking(person, shared, gait);
+  int planted_samples = 0;
+  for (int side : {1, -1}) {
+    std::optional<Vec3> last_contact;
+    for (double t = 0.5; t < 8; t += 1.0 / 240) {
+      const FootState foot = foot_state(person.skeleton, gait, track, side, t);
+      if (foot.planted) {
+        ++planted_samples;
+        // the point the foot rests or rolls on (heel, sole, ball) stays put: from one sample to
+        // the next it is the same point, or the foot has rolled onto another (5 cm and more)
+        if (last_contact) {
+          const double moved = (foot.contact_world - *last_contact).norm();
+          CHECK((moved == 0 || moved > 0.05));
+        }
+        last_contact = foot.contact_world;
+      } else {
+        last_contact.reset();
+      }
+      // the skinned leg reaches the ankle the gait asks for
+      const std::vector<Pose> posed = bones(t);
+      const int bone = side > 0 ? kFootL : kFootR;
+      const Vec3 ankle = shared->pose(t) * (posed[std::size_t(bone)] *
+                                            person.skeleton.joints[std::size_t(bone)]);
+      CHECK((ankle - foot.ankle_world).norm() < 0.02);
+    }
+  }
+  CHECK(planted_samples > 1500);
+}
+
+TEST_CASE("riders ride their bikes, and parked vehicles and the ego are actors with boxes") {
+  CityConfig config;
+  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 30;
+  config.duration = 2;
+  const City city = make_city(config);
+  REQUIRE(city.actors.size() == city.scene.actors.size());
+  int riders = 0, parked = 0, egos = 0;
+  for (std::size_t a = 0; a < city.actors.size(); ++a) {
+    const ActorRecord& record = city.actors[a];
+    const Actor& actor = city.scene.actors[a];
+    CHECK(actor.instance == a + 1);
+    if (record.kind == ActorKind::Rider) {
+      ++riders;
+      const ActorKind bike = city.actors[a - 1].kind;
+      CHECK((bike == ActorKind::Bike || bike == ActorKind::Motorbike));
+      CHECK(actor_class(actor) == SemanticClass::Rider);
+      for (double t : {0.0, 1.0, 2.0}) {  // the rider's hips stay over the bike
+        const Box3 body = actor_box(actor, t), ride = actor_box(city.scene.actors[a - 1], t);
+        CHECK((body.pose.translation() - ride.pose.translation()).head<2>().norm() < 0.6);
+      }
+    }
+    if (record.parked) {
+      ++parked;
+      const Box3 box = actor_box(actor, 0);
+      CHECK((box.size.x() > 3 && box.size.x() < 6));
+      CHECK(actor.pose(0).matrix() == actor.pose(2).matrix());
+    }
+    if (record.ego) {
+      ++egos;
+      CHECK(record.instance == city.ego_instance);
+      CHECK(actor_class(actor) == SemanticClass::EgoVehicle);
+      CHECK(actor.parts.front().on_rig);
+      for (double t : {0.0, 0.7, 1.9})  // the body rides with the rig, its height below it
+        CHECK((actor.pose(t).inverse() * city.rig(t)).translation().isApprox(
+            Vec3(0, 0, city.mount.height), 1e-9));
+    }
+  }
+  CHECK(riders > 0);
+  CHECK(parked > 10);
+  CHECK(egos == 1);
+}
+
+TEST_CASE("no ego vehicle fits cameras inside the car: the rig is refused, naming them") {
+  CityConfig config;
+  config.map = 0, config.vehicles = 2, config.pedestrians = 0, config.duration = 0.5;
+  config.ego_cameras = {Vec3(0.5, 0, -1.0)};  // in the cabin
+  CHECK_THROWS_WITH(make_city(config), Catch::Contains("no ego vehicle fits") &&
+                                           Catch::Contains("(0.500000, 0.000000, -1.000000)"));
+  config.draw_ego = false;
+  CHECK_NOTHROW(make_city(config));
+}
