@@ -141,6 +141,8 @@ class FlowScape:
         layout = ReleaseLayout(self.root)
         self.stored_seam = layout.conventions["flow"]["erp_seam"]
         self.unknown_flow = float(layout.conventions["flow"].get("unknown_value", UNKNOWN_FLOW))
+        # the class table's sky (carla-0.9.13: 13, carla-0.9.14: 11)
+        self.sky = int(layout.conventions.get("semantic", {}).get("sky", SKY))
         if self.camera is None and layout.cameras and self.faces is None:
             raise ValueError(f"{self.root}: its rig has no ERP; pick a camera: "
                              f"{', '.join(layout.cameras)}")
@@ -242,7 +244,7 @@ class FlowScape:
         if self.exclude_sky or "semantic" in self.extras:
             semantic = read_image(item["semantic"])[..., 0].astype(np.int64)
             if self.exclude_sky:
-                sample["valid"] *= (semantic != SKY)
+                sample["valid"] *= (semantic != self.sky)
             sample["semantic"] = semantic
         return sample
 

@@ -528,7 +528,7 @@ Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, 
 
 Material clear_glass() {
   Material m;
-  m.kind = Material::Kind::Window, m.albedo = {0.62f, 0.66f, 0.66f}, m.roughness = 0;
+  m.kind = Material::Kind::Window, m.albedo = {0.38f, 0.41f, 0.42f}, m.roughness = 0;
   return m;
 }
 

@@ -427,7 +427,8 @@ def test_meta_json_boxes_and_actors_match_the_files(all_kinds_release):
                 ids = io.read_image(layout.frame_file(scene, "instance", frame, face))[..., 0]
                 assert meta["boxes_2d"][view][frame] == _boxes_by_numpy(ids, face is None)
         poses = [np.vstack([np.array(p).reshape(3, 4), [0, 0, 0, 1]]) for p in meta["poses"]]
-        assert len(meta["actors"]) == 40
+        # 20 vehicles, 20 pedestrians, and the riders and parked cars the city made
+        assert len(meta["actors"]) == len(meta["city"]["actors"]) >= 40
         for actor in meta["actors"]:
             for frame in range(4):
                 centre = np.array(actor["centre"][frame] + [1])
@@ -520,3 +521,25 @@ def test_the_plugin_reads_every_camera_and_gt_quality_scores_them(rig_releases):
                             capture_output=True, text=True).stdout
     for camera in layout.cameras:
         assert f"/map00_seq00/{camera}" in report or f"/map00_seq01/{camera}" in report
+
+
+def test_a_release_in_the_carla_0914_table_names_its_sky_and_drops_it(tmp_path):
+    """--classes carla-0.9.14: the manifest names the table; the plugin drops its sky (11)."""
+    subprocess.run([f"{BIN}/gen_flowscape", "--maps", "1", "--sequences-per-map", "2", "--frames",
+                    "2", "--resolution", "32", "--no-cube", "--spp", "1", "--vehicles", "20",
+                    "--pedestrians", "10", "--classes", "carla-0.9.14", "--out", str(tmp_path)],
+                   check=True, capture_output=True)
+    subprocess.run([f"{BIN}/flowscape_split", str(tmp_path)], check=True, capture_output=True)
+    semantic = flowscape.ReleaseLayout(tmp_path).conventions["semantic"]
+    assert semantic["table"] == "carla-0.9.14" and semantic["sky"] == 11
+    assert semantic["names"][13] == "Rider" and semantic["names"][29] == "EgoVehicle"
+    data = flowscape.FlowScape(tmp_path, "train", exclude_sky=True, extras=("semantic",))
+    _, _, _, valid, extra = data[0]
+    ids = extra["semantic"].numpy()
+    assert (valid.numpy()[ids == 11] == 0).all() and (ids == 11).any()
+    layout = flowscape.ReleaseLayout(tmp_path)
+    for scene in ("map00_seq00", "map00_seq01"):
+        semantic_ids = io.read_image(layout.frame_file(scene, "semantic", 0))[..., 0]
+        depth = io.read_image(layout.frame_file(scene, "depth", 0))[..., 0]
+        assert set(np.unique(semantic_ids[np.isinf(depth)]).tolist()) == {11}
+        assert semantic_ids.max() <= 29

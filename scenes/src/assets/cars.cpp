@@ -22,7 +22,7 @@ void car_faces(BodyShape& s, double lamp_z, double tail_z, double grille_z, doub
   for (double side : {-1.0, 1.0}) {
     s.front.push_back({side * (b - 0.24), lamp_z, 0.19, 0.065, kHeadLamp});
     s.front.push_back({side * (b - 0.1), lamp_z - 0.1, 0.05, 0.025, kIndicator});
-    s.rear.push_back({side * (b - 0.17), tail_z, 0.15, 0.075, kTailLamp});
+    s.rear.push_back({side * (b - 0.2), tail_z, 0.17, 0.07, kTailLamp});
   }
   s.front.push_back({0, grille_z, 0.34, 0.075, kGrille});
   s.front.push_back({0, grille_z - 0.26, 0.5, 0.06, kGrille});

@@ -82,7 +82,7 @@ struct Ring {
 };
 Mesh tube_through(const std::vector<Ring>& rings, double power, SemanticClass cls,
                   const std::function<std::uint16_t(const V3&)>& slot, bool caps = true,
-                  int sides = 14) {
+                  int sides = 12) {
   Grid grid{int(rings.size()) + (caps ? 2 : 0), sides, true, {}};
   const auto ring_points = [&](const Ring& r) {
     for (int k = 0; k < sides; ++k) {
@@ -106,7 +106,7 @@ Mesh tube_through(const std::vector<Ring>& rings, double power, SemanticClass cl
 // A limb along a chain of joints, its sections perpendicular to each segment (rings given by the
 // share along the chain and radius), skinned along the chain.
 Mesh limb(const std::vector<V3>& joints, const std::vector<std::pair<double, double>>& radii,
-          SemanticClass cls, const std::function<std::uint16_t(double)>& slot, int sides = 12) {
+          SemanticClass cls, const std::function<std::uint16_t(double)>& slot, int sides = 10) {
   std::vector<double> length{0};
   for (std::size_t k = 1; k < joints.size(); ++k)
     length.push_back(length.back() + (joints[k] - joints[k - 1]).norm());

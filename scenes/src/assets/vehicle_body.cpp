@@ -123,16 +123,23 @@ void add_shell(Mesh& mesh, const BodyShape& s, const BodyFrame& f) {
   add_grid(mesh, grid, [&](int r, int c) { return shell_paint(s, f, grid, r, c); });
 }
 
-// A patch on the front (end +1) or rear (-1) face, 4 mm proud of it.
+// A patch on the front (end +1) or rear (-1) face, 4 mm proud of it; a point beyond the body's
+// outline there (a lamp wrapping round a corner) is drawn in towards the patch's centre.
 void add_face_decal(Mesh& mesh, const BodyFrame& f, const Decal& d, int end) {
   constexpr int n = 5;
+  const double centre = f.face_x(d.y, d.z, end);
+  if (!std::isfinite(centre)) return;  // off the body: no decal
+  // a point on the face near the centre's (not on the bonnet or boot lid far behind it)
+  const auto near_face = [&](double x) { return std::isfinite(x) && std::abs(x - centre) < 0.12; };
   Grid grid{n, n, false, {}};
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < n; ++k) {
-      const double y = d.y + d.half_width * (2.0 * i / (n - 1) - 1) * -end,
-                   z = d.z + d.half_height * (2.0 * k / (n - 1) - 1);
-      const double x = f.face_x(y, z, end);
-      if (!std::isfinite(x)) return;  // off the body: no decal
+      const double dy = d.half_width * (2.0 * i / (n - 1) - 1) * -end,
+                   dz = d.half_height * (2.0 * k / (n - 1) - 1);
+      double x = std::numeric_limits<double>::quiet_NaN(), y = d.y, z = d.z;
+      for (double share = 1; share > 0 && !near_face(x); share -= 0.1)
+        y = d.y + share * dy, z = d.z + share * dz, x = f.face_x(y, z, end);
+      if (!near_face(x)) x = centre, y = d.y, z = d.z;
       grid.points.emplace_back(x + end * 0.004, y, z);
     }
   add_grid(mesh, grid, [&](int, int) { return QuadPaint{C::Vehicles, d.slot}; });
@@ -316,15 +323,16 @@ Mesh road_wheel(double radius, double width, double rim_share, int outward) {
           {radius - 0.03, -w * 0.96}, {radius - 0.005, -w * 0.75}, {radius, -w * 0.4},
           {radius, w * 0.4},          {radius - 0.005, w * 0.75}, {radius - 0.03, w * 0.96},
           {rim + 0.8 * side, w * 1.02}, {rim + 0.3 * side, w},    {rim, w * 0.85}};
-  Grid grid{int(tyre.size()), 32, true, {}};
+  constexpr int kAround = 24;
+  Grid grid{int(tyre.size()), kAround, true, {}};
   for (const V2& p : tyre)
-    for (int k = 0; k < 32; ++k) {
-      const double a = 2 * kPi * k / 32;
+    for (int k = 0; k < kAround; ++k) {
+      const double a = 2 * kPi * k / kAround;
       grid.points.emplace_back(p.x() * std::cos(a), p.y(), p.x() * std::sin(a));
     }
   // the tyre's inner face (toward the axle) closes it as a ring of rubber
   grid.rows += 1;
-  for (int k = 0; k < 32; ++k) grid.points.push_back(grid.points[std::size_t(k)]);
+  for (int k = 0; k < kAround; ++k) grid.points.push_back(grid.points[std::size_t(k)]);
   add_grid(mesh, grid, [](int, int) { return QuadPaint{C::Vehicles, kTyre}; });
   // the rim: a dished face a little inside the outer sidewall, and the hub
   const double face = outward * w * 0.55;

@@ -58,7 +58,7 @@ struct Panel {
 
 struct BodyShape {
   double length = 4.5, width = 1.8;
-  double plan_exponent = 6;  // 2: round, 10: boxy
+  double plan_exponent = 8;  // 2: round, 10: boxy
   Curve top, belt, bottom;   // z over x
   double tumblehome = 0.12, bulge = 0.04, shoulder = 0.04;
   double roof_radius = 0.08, sill_radius = 0.08, crown = 0.03;
