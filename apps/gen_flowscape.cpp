@@ -129,6 +129,10 @@ int main(int argc, char** argv) {
   option("--classes", "classes", defaults.classes,
          "the semantic class table: carla-0.9.13 (FlowScape's 23 ids) or carla-0.9.14 (rider, car, "
          "truck, bus, motorcycle, bicycle apart, and the ego vehicle as 29)");
+  std::vector<std::string> packs;
+  app.add_option("--asset-pack", packs,
+                 "opt in to an asset pack of Debian's game data: torcs (torcs-data's cars; GPL-2+ "
+                 "and Free Art License models, recorded per actor and in the card); repeatable");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian), "
@@ -160,6 +164,7 @@ int main(int argc, char** argv) {
     if (!gaps.empty()) given["flow_gaps"] = parse_gaps(gaps);
     if (no_cube) given["cube"] = false;
     if (!models.empty()) given["models"] = parse_models(models);
+    if (!packs.empty()) given["asset_packs"] = packs;
     sources.file = config_file;
     ReleaseConfig c = resolve_config(sources);
     if (!shard.empty()) parse_shard(shard, c);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -290,6 +291,29 @@ EgoRoute route_from_name(const std::string& name) {
 
 std::string map_name(int map) { return style_of(map).name; }
 
+std::vector<std::string> asset_pack_names() { return {"torcs"}; }
+
+std::vector<PackModel> asset_pack(const std::string& name) {
+  if (name != "torcs")
+    throw std::invalid_argument("unknown asset pack \"" + name + "\" (torcs)");
+  const std::string cars = "/usr/share/games/torcs/cars/";
+  if (!std::filesystem::is_directory(cars))
+    throw std::invalid_argument("asset pack torcs: " + cars +
+                                " is missing (apt-get install torcs-data)");
+  const std::string art = "Free Art License 1.3", gpl = "GPL-2+";
+  // lengths, axles, wheel positions and sizes from each car's TORCS XML (its wheels are models
+  // of their own there: built-in ones stand in); radius = rim / 2 + tyre width x aspect ratio
+  return {{name, "p406", cars + "p406/p406.acc", ActorKind::Car, gpl,
+           "TORCS: Eric Espie, Christophe Guionneau, Bernhard Wymann", kTorcsTurn, 4.64,
+           {1.37, -1.37}, 0.75, 0.2032 + 0.235 * 0.55, 0.235},
+          {name, "baja-bug", cars + "baja-bug/baja-bug.acc", ActorKind::Car, art,
+           "TORCS: Jean-Christophe Durieu", kTorcsTurn, 3.8, {1.3, -1.2}, 0.77,
+           0.1778 + 0.155 * 0.8, 0.155},
+          {name, "acura-nsx-sz", cars + "acura-nsx-sz/acura-nsx-sz.acc", ActorKind::Car, art,
+           "TORCS: Jean-Christophe Durieu", kTorcsTurn, 5.0, {1.35, -1.43}, 0.8,
+           0.2159 + 0.245 * 0.45, 0.245}};
+}
+
 std::string style_name(ActorStyle style) {
   return style == ActorStyle::Legacy ? "legacy" : "detailed";
 }
@@ -322,6 +346,7 @@ void validate(const CityConfig& c) {
     throw std::invalid_argument("ego start " + std::to_string(c.ego_start) + " is not in 0..99");
   if (!(c.duration > 0 && c.duration <= 3600))
     throw std::invalid_argument("duration must be in (0, 3600] seconds");
+  for (const std::string& pack : c.asset_packs) asset_pack(pack);
   for (const auto& entry : c.models)
     if (kind_from_name(entry.first) == ActorKind::Rider)
       throw std::invalid_argument("riders take no user model (a bike's model is \"bike\")");
@@ -380,6 +405,37 @@ void add_legacy_actors(const PlacedTraffic& traffic, const std::map<ActorKind, M
   }
 }
 
+// The models of a city's asset packs, loaded once, and which vehicle shows one: a quarter of the
+// cars, by a hash of the instance.
+class PackModels {
+ public:
+  PackModels(const CityConfig& config, Scene& scene) {
+    for (const std::string& name : config.asset_packs)
+      for (const PackModel& m : asset_pack(name)) {
+        Material fallback;
+        fallback.kind = Material::Kind::Glossy, fallback.albedo = {0.5f, 0.45f, 0.4f};
+        models_.push_back({m, std::make_shared<const Mesh>(load_model(
+                                  m.path, SemanticClass::Car, m.length, scene, fallback, m.turn))});
+      }
+  }
+  struct Pick {
+    const PackModel* model = nullptr;
+    std::shared_ptr<const Mesh> mesh;
+  };
+  Pick pick(ActorKind kind, std::uint16_t instance, std::uint64_t seed) const {
+    std::vector<const std::pair<PackModel, std::shared_ptr<const Mesh>>*> fitting;
+    for (const auto& m : models_)
+      if (m.first.kind == kind) fitting.push_back(&m);
+    const double u = tex::hash01(instance, seed ^ 0x7061636bull);  // "pack"
+    if (fitting.empty() || u >= 0.25) return {};
+    const auto& [model, mesh] = *fitting[std::size_t(u / 0.25 * double(fitting.size()))];
+    return {&model, mesh};
+  }
+
+ private:
+  std::vector<std::pair<PackModel, std::shared_ptr<const Mesh>>> models_;
+};
+
 // The detailed actors: traffic (two-wheelers with their riders), walkers (one in eight of those in
 // groups a child), the parked cars and the ego vehicle, instances in that order.
 void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
@@ -395,12 +451,23 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
       record = {next(), ActorKind::Rider, record.lane, record.s, record.speed};
     }
   };
+  const PackModels pack(config, city.scene);
+  const auto vehicle = [&](ActorKind kind, std::shared_ptr<const Track> track, ActorRecord record) {
+    const PackModels::Pick picked = pack.pick(kind, record.instance, config.seed);
+    if (picked.model) {
+      record.model = picked.model->pack + "/" + picked.model->name;
+      add(library.pack_vehicle(picked.mesh, *picked.model, record.instance, std::move(track)),
+          record);
+      return;
+    }
+    add(library.vehicle(kind, record.instance, std::move(track), user_model_of(models, kind)),
+        record);
+  };
   for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
     const VehicleStart& start = spawned.vehicles[v];
     const ActorKind kind = spawned.vehicle_kinds[v - 1];
-    const auto track = std::make_shared<const Track>(traffic.tracks.vehicles[v]);
-    add(library.vehicle(kind, next(), track, user_model_of(models, kind)),
-        {next(), kind, start.lane, start.s, start.speed});
+    vehicle(kind, std::make_shared<const Track>(traffic.tracks.vehicles[v]),
+            {next(), kind, start.lane, start.s, start.speed});
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
@@ -415,11 +482,9 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
         {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed});
   }
   for (const Pose& pose : parked) {
-    const auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
     record.parked = true;
-    add(library.vehicle(ActorKind::Car, next(), still, user_model_of(models, ActorKind::Car)),
-        record);
+    vehicle(ActorKind::Car, std::make_shared<const Track>(Track{1, {pose}, {0}}), record);
   }
   if (!config.draw_ego) return;
   ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};
@@ -477,6 +542,7 @@ nlohmann::json to_json(const City& city) {
                              {"speed", a.speed}};
     if (a.parked) record["parked"] = true;
     if (a.ego) record["ego"] = true;
+    if (!a.model.empty()) record["model"] = a.model;
     actors.push_back(record);
   }
   const StartPoint& ego = city.ego_spawn;
@@ -495,6 +561,7 @@ nlohmann::json to_json(const City& city) {
           {"actors", actors}};
   if (c.actors == ActorStyle::Legacy) return record;  // the records of flowscape 0.9, unchanged
   record["actor_style"] = style_name(c.actors);
+  if (!c.asset_packs.empty()) record["asset_packs"] = c.asset_packs;
   record["wet"] = c.wet;
   record["ego"]["drawn"] = c.draw_ego;
   record["ego"]["instance"] = city.ego_instance;
@@ -517,6 +584,7 @@ CityConfig config_from_json(const nlohmann::json& record) {
     c.models = record.value("models", std::map<std::string, std::string>{});
     c.actors = style_from_name(record.value("actor_style", "legacy"));
     c.wet = record.value("wet", false);
+    c.asset_packs = record.value("asset_packs", std::vector<std::string>{});
     if (record.contains("ego") && record["ego"].contains("drawn")) {
       c.draw_ego = record["ego"]["drawn"].get<bool>();
       c.ego_cameras.clear();

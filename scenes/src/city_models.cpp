@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "assets/car_parts.h"
 #include "assets/gait.h"
 #include "assets/people.h"
 #include "assets/vehicles.h"
@@ -322,6 +323,28 @@ std::vector<Actor> ActorLibrary::vehicle_of(Family family, int variant, Livery l
                       riding(person, model, track), lib.person_slots(rider, random.bits())});
   actors.push_back(std::move(on));
   return actors;
+}
+
+std::vector<Actor> ActorLibrary::pack_vehicle(std::shared_ptr<const Mesh> body,
+                                              const PackModel& pack, std::uint16_t instance,
+                                              std::shared_ptr<const Track> track) {
+  Impl& lib = *impl_;
+  Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
+  actor.parts.push_back({body, [](double) { return Pose::Identity(); }});
+  if (!pack.axles.empty()) {
+    VehicleModel wheels;
+    wheels.family = Family::Saloon;
+    const int left = add_wheel_meshes(wheels, pack.wheel_radius, pack.tyre_width, 0.62);
+    for (double axle : pack.axles)
+      for (int side : {1, -1})
+        wheels.mounts.push_back({V3(axle, side * pack.track, pack.wheel_radius), axle > 0, false,
+                                 side > 0 ? left : left + 1});
+    wheels.wheelbase = pack.axles.front() - pack.axles.back();
+    const std::vector<std::uint16_t> slots = lib.vehicle_slots(
+        wheels, Livery::Plain, derived_seed(lib.seed, instance, 0x7061636bull));
+    lib.add_running_gear(actor, wheels, slots, track, [](double) { return Pose::Identity(); });
+  }
+  return {std::move(actor)};
 }
 
 Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<const Track> ego,

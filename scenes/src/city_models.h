@@ -47,6 +47,9 @@ class ActorLibrary {
                                 std::uint16_t instance, std::shared_ptr<const Track> track);
   Actor person_of(const assets::Look& look, std::uint16_t instance,
                   std::shared_ptr<const Track> track, double speed);
+  // An asset pack's model (its own materials) on built-in road wheels where the pack says.
+  std::vector<Actor> pack_vehicle(std::shared_ptr<const Mesh> body, const PackModel& model,
+                                  std::uint16_t instance, std::shared_ptr<const Track> track);
   // The ego vehicle: a car whose body is fixed to the rig (`rig`, its origin `height` above the
   // ego's road frame `ego`), its wheels on the road, rolling and steering; placed so that every
   // camera (rig frame) is at least kEgoClearance outside it. Throws std::invalid_argument naming

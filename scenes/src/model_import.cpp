@@ -298,7 +298,7 @@ std::string texture_cache_dir() {
 }
 
 Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
-                const Material& fallback) {
+                const Material& fallback, const Mat3& turn) {
   if (!fs::is_regular_file(path)) fail(path, "no such model file");
   if (!(length > 0)) fail(path, "model length must be positive");
   const std::string extension = fs::path(path).extension().string();
@@ -307,6 +307,10 @@ Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene
                   ? load_gltf(path, cls, scene, fallback_material)
                   : load_with_assimp(path, cls, scene, fallback_material);
   if (mesh.triangles.empty()) fail(path, "the model has no triangles");
+  const Eigen::Matrix3f r = turn.cast<float>();
+  for (Eigen::Vector3f& v : mesh.vertices) v = r * v;
+  for (Eigen::Vector3f& n : mesh.normals) n = r * n;
+  for (Eigen::Vector4f& t : mesh.tangents) t.head<3>() = r * t.head<3>();
   Eigen::Vector3f lo = mesh.vertices[0], hi = mesh.vertices[0];
   for (const Eigen::Vector3f& v : mesh.vertices) {
     if (!v.allFinite()) fail(path, "a vertex is not finite");

@@ -1,10 +1,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <sstream>
 
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/release/dataset_card.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/writer.h"
@@ -159,4 +162,48 @@ TEST_CASE("a rig's cameras each write every kind in their own folder, and meta.j
   CHECK(std::isnan(*depth.pixel(0, 0)));
   CHECK(*valid.pixel(0, 0) == 0);
   CHECK(std::isfinite(*depth.pixel(10, 8)));
+}
+
+// Opt-in asset packs: each actor showing a pack's model names it and its licence in meta.json, and
+// the card's licence lists them. Runs where Debian's torcs-data is installed (333 MB, not in CI).
+TEST_CASE("an asset pack's models carry their licence into meta.json and the card") {
+  ReleaseConfig config = tiny_release_config(1, 2);
+  config.weathers = {"sunny"};
+  config.asset_packs = {"flightgear"};
+  CHECK_THROWS_WITH(validate(config), Catch::Contains("unknown asset pack \"flightgear\""));
+  config.asset_packs = {"torcs"}, config.actors = "legacy";
+  if (!fs::is_directory("/usr/share/games/torcs/cars")) {
+    WARN("torcs-data is not installed: the pack's release is not checked");
+    return;
+  }
+  CHECK_THROWS_WITH(validate(config), Catch::Contains("asset_packs need detailed actors"));
+  config.actors = "detailed", config.vehicles = 12;
+  TempDir dir;
+  write(config, dir.path);
+  nlohmann::json meta;
+  std::ifstream(sequence_dir(dir.path, "map00_seq00") / "meta.json") >> meta;
+  const std::map<std::string, std::string> licences{{"torcs/p406", "GPL-2+"},
+                                                    {"torcs/baja-bug", "Free Art License 1.3"},
+                                                    {"torcs/acura-nsx-sz", "Free Art License 1.3"}};
+  int shown = 0, cars = 0;
+  for (const nlohmann::json& actor : meta["actors"]) {
+    if (actor["kind"] == "car" && !actor.contains("ego")) ++cars;
+    if (!actor.contains("model")) continue;
+    ++shown;
+    INFO(actor["model"]);
+    CHECK(actor["kind"] == "car");
+    CHECK(actor["licence"] == licences.at(actor["model"].get<std::string>()));
+    // the model is scaled to its car's length, and it stands on its wheels on the road
+    const nlohmann::json& box = actor["fixed_box"];
+    CHECK((box["size"][0].get<double>() > 3.5 && box["size"][0].get<double>() < 5.2));
+    CHECK(std::abs(box["centre_in_actor"][2].get<double>() - box["size"][2].get<double>() / 2) <
+          0.05);
+  }
+  CHECK((shown > 0 && shown < cars));  // a quarter of the cars, by instance
+  write_dataset_card(dir.path, config, nullptr);
+  std::ifstream card(dir.path / "README.md");
+  const std::string text((std::istreambuf_iterator<char>(card)), std::istreambuf_iterator<char>());
+  CHECK_THAT(text, Catch::Contains("| torcs/p406 | GPL-2+ |") &&
+                       Catch::Contains("| torcs/baja-bug | Free Art License 1.3 |") &&
+                       Catch::Contains("also under that model's licence"));
 }

@@ -32,7 +32,7 @@ Mesh plate() {
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < n; ++k) {
       const int a = i * (n + 1) + k, b = a + n + 1;
-      for (const Eigen::Vector3i t : {Eigen::Vector3i(a, b, b + 1), Eigen::Vector3i(a, b + 1, a + 1)}) {
+      for (const Eigen::Vector3i& t : {Eigen::Vector3i(a, b, b + 1), Eigen::Vector3i(a, b + 1, a + 1)}) {
         mesh.triangles.push_back(t);
         mesh.classes.push_back(SemanticClass::Dynamic);
       }

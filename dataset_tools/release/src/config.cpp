@@ -34,6 +34,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
   visit("cube", c.cube), visit("models", c.models);
   visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
+  visit("asset_packs", c.asset_packs);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
 }
 
@@ -77,6 +78,8 @@ void validate(const ReleaseConfig& c) {
   require(c.ego_routes == "mix" || c.ego_routes == "free", "ego_routes must be mix or free");
   require(c.actors == "detailed" || c.actors == "legacy", "actors must be detailed or legacy");
   require(c.ego == "auto" || c.ego == "on" || c.ego == "off", "ego must be auto, on or off");
+  require(c.asset_packs.empty() || c.actors == "detailed", "asset_packs need detailed actors");
+  for (const std::string& pack : c.asset_packs) asset_pack(pack);
   class_table(c.classes);
   for (const auto& [kind, path] : c.models) {
     kind_from_name(kind);

@@ -179,6 +179,23 @@ void layout_section(std::ostringstream& md, const ReleaseConfig& c) {
   md << "splits/, panoflow/                    written by flowscape_split\n```\n";
 }
 
+// CC BY 4.0, unless asset packs bring models under other terms: each listed with its licence and
+// copyright; images that show them carry those terms (meta.json names each actor's model).
+std::string licence_text(const ReleaseConfig& c) {
+  if (c.asset_packs.empty()) return "The generated data: CC BY 4.0.\n";
+  std::ostringstream md;
+  md << "The generated data: CC BY 4.0, except where it shows a model of an asset pack: an image "
+        "showing one (meta.json's `actors` name each actor's `model` and `licence`, and "
+        "`instance` finds its pixels) is also under that model's licence, which travels with "
+        "it (GPL-2+: the images are its derived works under GPL-2+; Free Art License 1.3: "
+        "share-alike).\n\n| model | licence | copyright | file |\n| --- | --- | --- | --- |\n";
+  for (const std::string& pack : c.asset_packs)
+    for (const PackModel& m : asset_pack(pack))
+      md << "| " << m.pack << "/" << m.name << " | " << m.licence << " | " << m.copyright
+         << " | `" << m.path << "` |\n";
+  return md.str();
+}
+
 std::string card_text(const ReleaseConfig& c, const fs::path& out,
                       const std::vector<std::string>& examples, const nlohmann::json& statistics) {
   std::ostringstream md;
@@ -197,7 +214,7 @@ std::string card_text(const ReleaseConfig& c, const fs::path& out,
   md << "## Reproduce\n\n```\ngen_flowscape --config config.json --out <dir>\n```\nwith "
         "config.json =\n"
      << "```json\n"
-     << to_json(c).dump(1) << "\n```\n\n## Licence\n\nThe generated data: CC BY 4.0.\n";
+     << to_json(c).dump(1) << "\n```\n\n## Licence\n\n" << licence_text(c);
   return md.str();
 }
 

@@ -33,6 +33,7 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
 
 void set_actors(SequenceSpec& spec, const ReleaseConfig& config) {
   spec.actors = style_from_name(config.actors);
+  spec.asset_packs = config.asset_packs;
   const Rig rig = release_rig(config);
   spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.cameras.empty());
   spec.ego_cameras = {Vec3::Zero()};
@@ -120,6 +121,7 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.actors = spec.actors;
   city_config.wet = weather.precipitation > 0;
   city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;
+  city_config.asset_packs = spec.asset_packs;
   Sequence s{spec, make_city(city_config), weather};
   apply_weather(s.weather, spec.seed, s.city.rig_track(), s.city.scene);
   return s;
@@ -216,6 +218,14 @@ void add_box_pose(nlohmann::json& columns, const Pose& pose, const std::string& 
       {rounded(q.w()), rounded(q.x()), rounded(q.y()), rounded(q.z())});
 }
 
+// The licence of an asset pack's model ("pack/name").
+std::string pack_licence(const CityConfig& city, const std::string& model) {
+  for (const std::string& pack : city.asset_packs)
+    for (const PackModel& m : asset_pack(pack))
+      if (m.pack + "/" + m.name == model) return m.licence;
+  return "";
+}
+
 // The box (in the actor's frame: pose = its centre there) holding every per-frame box.
 Box3 extent_box(const Actor& actor, const std::vector<Box3>& boxes, int frames) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
@@ -252,6 +262,10 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
     if (detailed) {
       if (of.parked) record["parked"] = true;
       if (of.ego) record["ego"] = true;
+      if (!of.model.empty()) {
+        record["model"] = of.model;
+        record["licence"] = pack_licence(s.city.config, of.model);
+      }
       record["fixed_box"] = {{"centre_in_actor", vector_json(fixed.pose.translation())},
                              {"size", vector_json(fixed.size)}};
     }

@@ -216,6 +216,7 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("actors")) recorded["actors"] = "legacy";  // 0.9 and before
     if (!recorded.contains("ego")) recorded["ego"] = ReleaseConfig{}.ego;
     if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
+    if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
   }
   return recorded;
 }

@@ -46,6 +46,25 @@ inline constexpr int kEgoTries = 24;
 inline constexpr double kEgoClearAhead = 40;  // metres
 inline constexpr double kEgoTurnDegrees = 45, kEgoSpeedShare = 0.5;
 
+// A model of an opt-in asset pack (Debian's game data): a file assimp reads, the kind it stands for,
+// where it is from and its licence, which travels with the images that show it.
+struct PackModel {
+  std::string pack, name, path;
+  ActorKind kind;
+  std::string licence, copyright;
+  Mat3 turn = Mat3::Identity();  // load_model's (kTorcsTurn for TORCS's cars)
+  double length = 4.5;           // metres, nose to tail
+  // Where its wheels go (a model without them gets built-in road wheels): axle x positions from
+  // the middle, half the track, wheel radius and tyre width, metres; no axles: none added.
+  std::vector<double> axles{};
+  double track = 0, wheel_radius = 0, tyre_width = 0;
+};
+// The models of an asset pack: "torcs" (Debian's torcs-data: a Peugeot 406 (GPL-2+), a VW beetle
+// and an Acura NSX (Free Art License 1.3)). Throws std::invalid_argument for another name, and
+// naming the Debian package when it is not installed.
+std::vector<PackModel> asset_pack(const std::string& name);
+std::vector<std::string> asset_pack_names();
+
 struct CityConfig {
   int map = 0;  // 0 .. kMapCount - 1
   std::uint64_t seed = 0;
@@ -61,6 +80,8 @@ struct CityConfig {
   // The ego vehicle is drawn (detailed actors), clear of these camera centres (rig frame).
   bool draw_ego = true;
   std::vector<Vec3> ego_cameras{Vec3::Zero()};
+  // Opt-in asset packs (asset_pack): a quarter of the cars (detailed actors) are their models.
+  std::vector<std::string> asset_packs{};
 };
 void validate(const CityConfig& config);  // throws std::invalid_argument naming the bad value
 
@@ -77,6 +98,7 @@ struct ActorRecord {
   int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on; -1: none
   double s, speed;
   bool parked = false, ego = false;
+  std::string model = "";  // an asset pack's model ("torcs/p406"), or empty: a built-in one
 };
 
 // How the camera rig sits on the ego, drawn per city seed (per sequence in a release): its height

@@ -15,9 +15,12 @@ namespace flowscape {
 // tangents, and its materials are added to `scene`: base colour, metallic-roughness and normal
 // textures, alpha masks (glTF MASK; BLEND is treated as MASK at 0.5). Triangles without a
 // material get `fallback`. Textures embedded in the file are written once to the texture cache
-// (texture_cache_dir()) so that the renderer's TextureSystem can mip-map them.
+// (texture_cache_dir()) so that the renderer's TextureSystem can mip-map them. `turn` turns the
+// model after that (TORCS's cars: kTorcsTurn).
 Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
-                const Material& fallback = {});
+                const Material& fallback = {}, const Mat3& turn = Mat3::Identity());
+// What turns TORCS's cars forward: read y-up, their length lies along y (their nose at -y).
+inline const Mat3 kTorcsTurn = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
 
 // Where embedded textures go: $FLOWSCAPE_TEXTURE_CACHE, else <temp dir>/flowscape-textures; one
 // file per distinct image, named by a hash of its bytes.

@@ -54,6 +54,10 @@ struct ReleaseConfig {
   // default, FlowScape's) or "carla-0.9.14" (with riders, cars, trucks, buses, motorcycles,
   // bicycles and the ego vehicle apart).
   std::string classes = "carla-0.9.13";
+  // Opt-in asset packs of Debian's game data ("torcs"): a quarter of the cars show their models;
+  // each model's licence is recorded per actor in meta.json and in the card (GPL or share-alike
+  // terms travel with the images that show them).
+  std::vector<std::string> asset_packs{};
   std::uint64_t seed = 0;
   bool cube = true;  // also write the six faces (the ERP colour is stitched from them)
   // Output kinds written besides the six every release has (layout.h's pickable rows, or "all"),

@@ -26,6 +26,7 @@ struct SequenceSpec {
   ActorStyle actors = ActorStyle::Detailed;
   bool draw_ego = true;
   std::vector<Vec3> ego_cameras{Vec3::Zero()};  // the rig's optical centres (rig frame)
+  std::vector<std::string> asset_packs{};
 };
 // The spec of a planned sequence of a release (its ego start follows from its seed, its route
 // from the plan's `turns`).
