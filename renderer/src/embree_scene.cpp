@@ -56,8 +56,8 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked,
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
   }
   copy_vertices(mesh, static_cast<float*>(rtcSetNewGeometryBuffer(
-                          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                          3 * sizeof(float), mesh.vertices.size())));
+                          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                          mesh.vertices.size())));
   auto* indices = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(unsigned), mesh.triangles.size()));
@@ -166,10 +166,17 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
   for (std::size_t a = 0; a < scene.actors.size(); ++a)
     for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p) {
       const Part& part = scene.actors[a].parts[p];
-      if (!part.mesh) throw std::invalid_argument(mesh_name({nullptr, nullptr, int(a), int(p)}) +
-                                                  ": has no mesh");
-      MeshRef ref{part.mesh.get(), part.mesh.get(), int(a), int(p), scene.actors[a].instance,
-                  scene.actors[a].color_only, &part.materials, part.on_rig};
+      if (!part.mesh)
+        throw std::invalid_argument(mesh_name({nullptr, nullptr, int(a), int(p)}) +
+                                    ": has no mesh");
+      MeshRef ref{part.mesh.get(),
+                  part.mesh.get(),
+                  int(a),
+                  int(p),
+                  scene.actors[a].instance,
+                  scene.actors[a].color_only,
+                  &part.materials,
+                  part.on_rig};
       if (part.bones) ref.skinned = int(skinned_.size()), skinned_.push_back(meshes_.size());
       meshes_.push_back(ref);
     }
@@ -195,7 +202,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     if (!bvh)
       bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr,
                       ref.actor < 0 ? Build::World : Build::Shared);
-    else rtcRetainScene(bvh);
+    else
+      rtcRetainScene(bvh);
     bvhs_.push_back(bvh);
   }
   now_ = posed_scene();
@@ -284,8 +292,8 @@ Vec3 EmbreeScene::point_at_target(int target, const Hit& hit, const Vec3& point)
   const int k = meshes_[hit.mesh].skinned;
   const Pose& then = pose_at_target(target, hit.mesh);
   if (k < 0) return then * (inverse_now_[hit.mesh] * point);
-  return then * point_on(targets_[std::size_t(target)].deformed[std::size_t(k)].mesh,
-                         hit.triangle, hit.u, hit.v);
+  return then * point_on(targets_[std::size_t(target)].deformed[std::size_t(k)].mesh, hit.triangle,
+                         hit.u, hit.v);
 }
 
 Vec3 EmbreeScene::pattern_point(const Hit& hit, const Vec3& point) const {

@@ -21,7 +21,7 @@ struct MeshRef {
   std::uint16_t instance = 0;
   bool color_only = false;
   const std::vector<std::uint16_t>* slots = nullptr;  // the part's materials (empty: the mesh's)
-  bool on_rig = false;                                 // Part::on_rig
+  bool on_rig = false;                                // Part::on_rig
   int skinned = -1;  // index of the part among the skinned ones, or -1 (rigid)
 };
 // The scene material a mesh's triangle is drawn with.

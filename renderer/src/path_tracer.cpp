@@ -24,6 +24,14 @@ constexpr double kScatteredSpread = 0.2;
 
 enum Layer { kOther, kDirect, kIndirect, kSpecular, kLayerCount };
 
+// What a vehicle's window mirrors: the sky above, and near the horizon, where buildings and
+// traffic across the street hide the sky, the dim radiance of the dome below it (a pane would
+// otherwise mirror the horizon's glare at the grazing angles it is seen at from the street).
+Rgb mirrored_by_pane(const Lights& lights, const Vec3& dir) {
+  const double open = std::clamp(dir.z() / 0.4, 0.0, 1.0);  // sin 24 degrees
+  return open * lights.sky_radiance(dir) + (1 - open) * lights.environment.ground.cast<double>();
+}
+
 struct PathState {
   Vec3 origin, dir;
   Rgb throughput = Rgb::Ones();
@@ -129,13 +137,13 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   }
   const bool first = path.layer == kOther;
   if (m.kind == Material::Kind::Window) {
-    // the sky it mirrors (both faces' Fresnel reflection, taken whole rather than sampled: a
+    // what it mirrors (both faces' Fresnel reflection, taken whole rather than sampled: a
     // window would speckle otherwise), and straight through, tinted, to what lies behind: the
     // first surface then. Light scattered in from a dark cabin is too little to follow: paths that
     // bounced before end at the pane.
     const double f = schlick(std::abs(dir.dot(s.normal)), 0.04), reflected = 2 * f / (1 + f);
     path.light[first ? kSpecular : path.layer] +=
-        throughput.cwiseProduct(lights.sky_radiance(reflect(dir, s.normal))) * reflected;
+        throughput.cwiseProduct(mirrored_by_pane(lights, reflect(dir, s.normal))) * reflected;
     if (path.layer == kIndirect) return false;
     throughput = throughput.cwiseProduct(s.albedo) * (1 - reflected);
     origin = s.position + offset * dir;

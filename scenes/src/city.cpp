@@ -56,9 +56,11 @@ ActorKind vehicle_kind(const Style& style, const CityConfig& config, int n, Rand
   const double trucks = warehouses ? 0.25 : 0.08;
   const bool detailed = config.actors == ActorStyle::Detailed;
   const double split = tex::hash01(std::uint64_t(n), config.seed ^ 0x6b696e64ull);  // "kind"
-  if (u < trucks) return detailed && split < (warehouses ? 0.5 : 0.3) ? ActorKind::Lorry : ActorKind::Truck;
+  if (u < trucks)
+    return detailed && split < (warehouses ? 0.5 : 0.3) ? ActorKind::Lorry : ActorKind::Truck;
   if (u < trucks + 0.07) return ActorKind::Bus;
-  if (u < trucks + 0.07 + 0.12) return detailed && split < 0.4 ? ActorKind::Motorbike : ActorKind::Bike;
+  if (u < trucks + 0.07 + 0.12)
+    return detailed && split < 0.4 ? ActorKind::Motorbike : ActorKind::Bike;
   return ActorKind::Car;
 }
 
@@ -294,8 +296,7 @@ std::string map_name(int map) { return style_of(map).name; }
 std::vector<std::string> asset_pack_names() { return {"torcs"}; }
 
 std::vector<PackModel> asset_pack(const std::string& name) {
-  if (name != "torcs")
-    throw std::invalid_argument("unknown asset pack \"" + name + "\" (torcs)");
+  if (name != "torcs") throw std::invalid_argument("unknown asset pack \"" + name + "\" (torcs)");
   const std::string cars = "/usr/share/games/torcs/cars/";
   if (!std::filesystem::is_directory(cars))
     throw std::invalid_argument("asset pack torcs: " + cars +
@@ -303,15 +304,42 @@ std::vector<PackModel> asset_pack(const std::string& name) {
   const std::string art = "Free Art License 1.3", gpl = "GPL-2+";
   // lengths, axles, wheel positions and sizes from each car's TORCS XML (its wheels are models
   // of their own there: built-in ones stand in); radius = rim / 2 + tyre width x aspect ratio
-  return {{name, "p406", cars + "p406/p406.acc", ActorKind::Car, gpl,
-           "TORCS: Eric Espie, Christophe Guionneau, Bernhard Wymann", kTorcsTurn, 4.64,
-           {1.37, -1.37}, 0.75, 0.2032 + 0.235 * 0.55, 0.235},
-          {name, "baja-bug", cars + "baja-bug/baja-bug.acc", ActorKind::Car, art,
-           "TORCS: Jean-Christophe Durieu", kTorcsTurn, 3.8, {1.3, -1.2}, 0.77,
-           0.1778 + 0.155 * 0.8, 0.155},
-          {name, "acura-nsx-sz", cars + "acura-nsx-sz/acura-nsx-sz.acc", ActorKind::Car, art,
-           "TORCS: Jean-Christophe Durieu", kTorcsTurn, 5.0, {1.35, -1.43}, 0.8,
-           0.2159 + 0.245 * 0.45, 0.245}};
+  return {{name,
+           "p406",
+           cars + "p406/p406.acc",
+           ActorKind::Car,
+           gpl,
+           "TORCS: Eric Espie, Christophe Guionneau, Bernhard Wymann",
+           kTorcsTurn,
+           4.64,
+           {1.37, -1.37},
+           0.75,
+           0.2032 + 0.235 * 0.55,
+           0.235},
+          {name,
+           "baja-bug",
+           cars + "baja-bug/baja-bug.acc",
+           ActorKind::Car,
+           art,
+           "TORCS: Jean-Christophe Durieu",
+           kTorcsTurn,
+           3.8,
+           {1.3, -1.2},
+           0.77,
+           0.1778 + 0.155 * 0.8,
+           0.155},
+          {name,
+           "acura-nsx-sz",
+           cars + "acura-nsx-sz/acura-nsx-sz.acc",
+           ActorKind::Car,
+           art,
+           "TORCS: Jean-Christophe Durieu",
+           kTorcsTurn,
+           5.0,
+           {1.35, -1.43},
+           0.8,
+           0.2159 + 0.245 * 0.45,
+           0.245}};
 }
 
 std::string style_name(ActorStyle style) {
@@ -329,9 +357,8 @@ std::string kind_name(ActorKind kind) { return kKindNames[int(kind)]; }
 ActorKind kind_from_name(const std::string& name) {
   for (int k = 0; k < int(std::size(kKindNames)); ++k)
     if (name == kKindNames[k]) return ActorKind(k);
-  throw std::invalid_argument(
-      "unknown actor kind \"" + name +
-      "\" (car, truck, bus, bike, pedestrian, lorry, motorbike or rider)");
+  throw std::invalid_argument("unknown actor kind \"" + name +
+                              "\" (car, truck, bus, bike, pedestrian, lorry, motorbike or rider)");
 }
 
 void validate(const CityConfig& c) {
@@ -471,11 +498,13 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
-    const bool grouped = (w > 0 && spawned.walkers[w - 1].loop == start.loop &&
-                          spawned.walkers[w - 1].speed == start.speed) ||
-                         (w + 1 < spawned.walkers.size() && spawned.walkers[w + 1].loop == start.loop &&
-                          spawned.walkers[w + 1].speed == start.speed);
-    const bool child = grouped && tex::hash01(std::uint64_t(w), config.seed ^ 0x6368696c64ull) < 0.35;
+    const bool grouped =
+        (w > 0 && spawned.walkers[w - 1].loop == start.loop &&
+         spawned.walkers[w - 1].speed == start.speed) ||
+        (w + 1 < spawned.walkers.size() && spawned.walkers[w + 1].loop == start.loop &&
+         spawned.walkers[w + 1].speed == start.speed);
+    const bool child =
+        grouped && tex::hash01(std::uint64_t(w), config.seed ^ 0x6368696c64ull) < 0.35;
     const auto track = std::make_shared<const Track>(traffic.tracks.walkers[w]);
     add({library.pedestrian(next(), track, start.speed, child,
                             user_model_of(models, ActorKind::Pedestrian))},
@@ -547,18 +576,18 @@ nlohmann::json to_json(const City& city) {
   }
   const StartPoint& ego = city.ego_spawn;
   nlohmann::json record = {{"map", c.map},
-          {"map_name", map_name(c.map)},
-          {"seed", c.seed},
-          {"vehicles", c.vehicles},
-          {"pedestrians", c.pedestrians},
-          {"ego_start", c.ego_start},
-          {"ego_route", route_name(c.ego_route)},
-          {"duration", c.duration},
-          {"models", c.models},
-          {"camera_height", city.mount.height},
-          {"ego", {{"lane", ego.lane}, {"s", ego.s}, {"tries", city.ego_tries}}},
-          {"start_points", city.start_points.size()},
-          {"actors", actors}};
+                           {"map_name", map_name(c.map)},
+                           {"seed", c.seed},
+                           {"vehicles", c.vehicles},
+                           {"pedestrians", c.pedestrians},
+                           {"ego_start", c.ego_start},
+                           {"ego_route", route_name(c.ego_route)},
+                           {"duration", c.duration},
+                           {"models", c.models},
+                           {"camera_height", city.mount.height},
+                           {"ego", {{"lane", ego.lane}, {"s", ego.s}, {"tries", city.ego_tries}}},
+                           {"start_points", city.start_points.size()},
+                           {"actors", actors}};
   if (c.actors == ActorStyle::Legacy) return record;  // the records of flowscape 0.9, unchanged
   record["actor_style"] = style_name(c.actors);
   if (!c.asset_packs.empty()) record["asset_packs"] = c.asset_packs;
@@ -589,7 +618,8 @@ CityConfig config_from_json(const nlohmann::json& record) {
       c.draw_ego = record["ego"]["drawn"].get<bool>();
       c.ego_cameras.clear();
       for (const auto& p : record["ego"].at("cameras"))
-        c.ego_cameras.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>());
+        c.ego_cameras.emplace_back(p.at(0).get<double>(), p.at(1).get<double>(),
+                                   p.at(2).get<double>());
     }
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("scene record: ") + e.what());

@@ -482,11 +482,10 @@ Material hair(std::uint64_t seed) {
 Rgb popular_car_colour(std::uint64_t seed) {
   Random random(mix_bits(seed ^ 0x636f6c6f7572ull));  // "colour"
   // white, black, grey, silver, blue, red, green, beige, orange
-  static const Rgb kColours[] = {{0.78f, 0.78f, 0.76f}, {0.025f, 0.025f, 0.028f},
-                                 {0.2f, 0.21f, 0.22f},  {0.5f, 0.51f, 0.53f},
-                                 {0.04f, 0.09f, 0.3f},  {0.45f, 0.03f, 0.025f},
-                                 {0.05f, 0.16f, 0.08f}, {0.5f, 0.42f, 0.3f},
-                                 {0.7f, 0.3f, 0.04f}};
+  static const Rgb kColours[] = {
+      {0.78f, 0.78f, 0.76f}, {0.025f, 0.025f, 0.028f}, {0.2f, 0.21f, 0.22f},
+      {0.5f, 0.51f, 0.53f},  {0.04f, 0.09f, 0.3f},     {0.45f, 0.03f, 0.025f},
+      {0.05f, 0.16f, 0.08f}, {0.5f, 0.42f, 0.3f},      {0.7f, 0.3f, 0.04f}};
   static const double kShares[] = {0.25, 0.2, 0.18, 0.14, 0.09, 0.08, 0.02, 0.02, 0.02};
   double u = random.uniform();
   int k = 0;
@@ -568,8 +567,8 @@ Material grille() {
 
 Material shoes(std::uint64_t seed) {
   Random random(seed);
-  static const Rgb kShoes[] = {{0.02f, 0.02f, 0.02f}, {0.15f, 0.08f, 0.04f},
-                               {0.7f, 0.7f, 0.68f},   {0.08f, 0.08f, 0.12f}};
+  static const Rgb kShoes[] = {
+      {0.02f, 0.02f, 0.02f}, {0.15f, 0.08f, 0.04f}, {0.7f, 0.7f, 0.68f}, {0.08f, 0.08f, 0.12f}};
   Material m;
   m.kind = Material::Kind::Glossy, m.roughness = 0.4f;
   m.albedo = varied(random, kShoes[random.below(4)], 0.1);
@@ -588,8 +587,8 @@ Material bag(std::uint64_t seed) {
 
 Material umbrella(std::uint64_t seed) {
   Random random(seed);
-  static const Rgb kCanopies[] = {{0.02f, 0.02f, 0.02f}, {0.03f, 0.06f, 0.25f},
-                                  {0.4f, 0.03f, 0.03f},  {0.5f, 0.45f, 0.05f}};
+  static const Rgb kCanopies[] = {
+      {0.02f, 0.02f, 0.02f}, {0.03f, 0.06f, 0.25f}, {0.4f, 0.03f, 0.03f}, {0.5f, 0.45f, 0.05f}};
   Material m;
   m.kind = Material::Kind::Glossy, m.roughness = 0.2f;
   m.albedo = varied(random, kCanopies[random.below(4)], 0.1);

@@ -52,8 +52,8 @@ Rgb popular_car_colour(std::uint64_t seed);
 Material body_paint(const Rgb& colour, std::uint64_t seed);
 Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, bool checks,
                       std::uint64_t seed);
-Material clear_glass();              // windows you see through (thin, tinted panes)
-Material trim_plastic();             // black bumpers, pillars, seals
+Material clear_glass();   // windows you see through (thin, tinted panes)
+Material trim_plastic();  // black bumpers, pillars, seals
 Material chrome();
 Material upholstery(std::uint64_t seed);
 Material underbody();

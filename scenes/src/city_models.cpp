@@ -26,12 +26,18 @@ Pose at(const V3& p) { return Pose(Eigen::Translation3d(p)); }
 // The family a vehicle of `kind` is drawn as, and its livery.
 std::pair<Family, Livery> family_of(ActorKind kind, Random& random) {
   switch (kind) {
-    case ActorKind::Truck: return {Family::BoxTruck, Livery::Plain};
-    case ActorKind::Lorry: return {Family::Lorry, Livery::Plain};
-    case ActorKind::Bus: return {Family::CityBus, Livery::Plain};
-    case ActorKind::Bike: return {Family::Bicycle, Livery::Plain};
-    case ActorKind::Motorbike: return {Family::Motorbike, Livery::Plain};
-    default: break;
+    case ActorKind::Truck:
+      return {Family::BoxTruck, Livery::Plain};
+    case ActorKind::Lorry:
+      return {Family::Lorry, Livery::Plain};
+    case ActorKind::Bus:
+      return {Family::CityBus, Livery::Plain};
+    case ActorKind::Bike:
+      return {Family::Bicycle, Livery::Plain};
+    case ActorKind::Motorbike:
+      return {Family::Motorbike, Livery::Plain};
+    default:
+      break;
   }
   static const Family kCars[] = {Family::Hatchback, Family::Saloon, Family::Estate,
                                  Family::Suv,       Family::Pickup, Family::Van};
@@ -41,10 +47,11 @@ std::pair<Family, Livery> family_of(ActorKind kind, Random& random) {
   while (k < 5 && (u -= kShares[k]) > 0) ++k;
   const Family family = kCars[k];
   const double l = random.uniform();
-  const Livery livery = family == Family::Van && l < 0.3                               ? Livery::Delivery
-                        : (family == Family::Saloon || family == Family::Estate) && l < 0.1 ? Livery::Taxi
-                        : (family == Family::Estate || family == Family::Suv) && l > 0.96 ? Livery::Police
-                                                                                        : Livery::Plain;
+  const Livery livery =
+      family == Family::Van && l < 0.3                                    ? Livery::Delivery
+      : (family == Family::Saloon || family == Family::Estate) && l < 0.1 ? Livery::Taxi
+      : (family == Family::Estate || family == Family::Suv) && l > 0.96   ? Livery::Police
+                                                                          : Livery::Plain;
   return {family, livery};
 }
 
@@ -56,7 +63,8 @@ double winding(const Mesh& mesh, const V3& p) {
     const V3 a = mesh.vertices[t[0]].cast<double>() - p, b = mesh.vertices[t[1]].cast<double>() - p,
              c = mesh.vertices[t[2]].cast<double>() - p;
     const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    sum += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
+    sum += 2 * std::atan2(a.dot(b.cross(c)),
+                          la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
   }
   return sum / (4 * kPi);
 }
@@ -108,14 +116,22 @@ double curvature(const Track& track, double distance) {
 
 KindSize kind_size(ActorKind kind) {
   switch (kind) {
-    case ActorKind::Car: return {4.5, 1.9};
-    case ActorKind::Truck: return {8.0, 2.5};
-    case ActorKind::Bus: return {11.0, 2.55};
-    case ActorKind::Bike: return {1.9, 0.7};
-    case ActorKind::Pedestrian: return {0.5, 0.6};
-    case ActorKind::Lorry: return {16.5, 2.55};
-    case ActorKind::Motorbike: return {2.1, 0.8};
-    case ActorKind::Rider: return {0.6, 0.6};
+    case ActorKind::Car:
+      return {4.5, 1.9};
+    case ActorKind::Truck:
+      return {8.0, 2.5};
+    case ActorKind::Bus:
+      return {11.0, 2.55};
+    case ActorKind::Bike:
+      return {1.9, 0.7};
+    case ActorKind::Pedestrian:
+      return {0.5, 0.6};
+    case ActorKind::Lorry:
+      return {16.5, 2.55};
+    case ActorKind::Motorbike:
+      return {2.1, 0.8};
+    case ActorKind::Rider:
+      return {0.6, 0.6};
   }
   return {1, 1};
 }
@@ -146,7 +162,8 @@ struct ActorLibrary::Impl {
 
   const VehicleModel& vehicle_model(Family family, int variant) {
     auto it = vehicles.find({family, variant});
-    if (it == vehicles.end()) it = vehicles.emplace(std::pair{family, variant}, build_vehicle(family, variant)).first;
+    if (it == vehicles.end())
+      it = vehicles.emplace(std::pair{family, variant}, build_vehicle(family, variant)).first;
     return it->second;
   }
 
@@ -164,18 +181,26 @@ struct ActorLibrary::Impl {
     Rgb second = cm::popular_car_colour(random.bits());
     Material body;
     switch (livery) {
-      case Livery::Taxi: paint = {0.75f, 0.55f, 0.02f}; body = cm::body_paint(paint, look); break;
+      case Livery::Taxi:
+        paint = {0.75f, 0.55f, 0.02f};
+        body = cm::body_paint(paint, look);
+        break;
       case Livery::Police:
-        body = cm::banded_paint({0.78f, 0.78f, 0.76f}, {0.03f, 0.08f, 0.45f}, 0.55, 0.85, true, look);
+        body =
+            cm::banded_paint({0.78f, 0.78f, 0.76f}, {0.03f, 0.08f, 0.45f}, 0.55, 0.85, true, look);
         break;
       case Livery::Delivery:
         body = cm::banded_paint({0.8f, 0.8f, 0.78f}, second, 0.9, 1.5, false, look);
         break;
-      case Livery::Plain: body = cm::body_paint(paint, look); break;
+      case Livery::Plain:
+        body = cm::body_paint(paint, look);
+        break;
     }
     if (model.family == Family::CityBus) {  // buses in a fleet colour
-      static const Rgb kFleets[] = {{0.5f, 0.03f, 0.03f}, {0.03f, 0.12f, 0.45f},
-                                    {0.05f, 0.3f, 0.1f},  {0.75f, 0.55f, 0.05f},
+      static const Rgb kFleets[] = {{0.5f, 0.03f, 0.03f},
+                                    {0.03f, 0.12f, 0.45f},
+                                    {0.05f, 0.3f, 0.1f},
+                                    {0.75f, 0.55f, 0.05f},
                                     {0.78f, 0.78f, 0.76f}};
       body = cm::body_paint(kFleets[random.below(5)], look);
     }
@@ -187,7 +212,7 @@ struct ActorLibrary::Impl {
     slots[kInterior] = interior, slots[kUnderbody] = underbody, slots[kGrille] = grille;
     slots[kTyre] = tyre(model.family == Family::Bicycle ? 0.036 : 0.25);
     slots[kRim] = add_material(scene, cm::wheel_rim(random.bits()));
-    const Rgb band = livery == Livery::Taxi ? Rgb(0.9f, 0.9f, 0.88f)
+    const Rgb band = livery == Livery::Taxi     ? Rgb(0.9f, 0.9f, 0.88f)
                      : livery == Livery::Police ? Rgb(0.05f, 0.1f, 0.6f)
                                                 : Rgb(random.chance(0.5) ? 0.8f : second.x(),
                                                       random.chance(0.5) ? 0.8f : second.y(),
@@ -198,9 +223,16 @@ struct ActorLibrary::Impl {
   }
 
   const PersonModel& person_model(const Look& look, SemanticClass cls) {
-    const auto key = std::tuple{int(look.female), int(look.child), int(std::lround(look.height * 20)),
-                                int(std::lround(look.build * 10)), int(look.top), int(look.bottom),
-                                int(look.hair), int(look.bag), int(look.umbrella), int(cls)};
+    const auto key = std::tuple{int(look.female),
+                                int(look.child),
+                                int(std::lround(look.height * 20)),
+                                int(std::lround(look.build * 10)),
+                                int(look.top),
+                                int(look.bottom),
+                                int(look.hair),
+                                int(look.bag),
+                                int(look.umbrella),
+                                int(cls)};
     auto it = people.find(key);
     if (it == people.end()) {
       Look rounded = look;
@@ -214,8 +246,9 @@ struct ActorLibrary::Impl {
     std::vector<std::uint16_t> slots(kPersonSlots);
     slots[kSkinTone] = add_material(scene, cm::skin(id));
     slots[kTop] = add_material(scene, cm::clothing(id + 1, false));
-    slots[kBottom] = look.bottom == Look::Bottom::Dress ? slots[kTop]
-                                                         : add_material(scene, cm::clothing(id + 2, true));
+    slots[kBottom] = look.bottom == Look::Bottom::Dress
+                         ? slots[kTop]
+                         : add_material(scene, cm::clothing(id + 2, true));
     slots[kShoes] = add_material(scene, cm::shoes(id + 3));
     slots[kHair] = add_material(scene, cm::hair(id + 4));
     slots[kBag] = add_material(scene, cm::bag(id + 5));
@@ -227,15 +260,17 @@ struct ActorLibrary::Impl {
   // The wheels (and a lorry's trailer, a bicycle's cranks) of a vehicle following `track`, as
   // parts of its actor; `body` maps the actor frame to where the wheels' road frame is (the ego's
   // body sways on its springs, its wheels stay on the road).
-  void add_running_gear(Actor& actor, const VehicleModel& model, const std::vector<std::uint16_t>& slots,
+  void add_running_gear(Actor& actor, const VehicleModel& model,
+                        const std::vector<std::uint16_t>& slots,
                         const std::shared_ptr<const Track>& track,
                         const std::function<Pose(double)>& road_in_actor) {
     const auto trailer = [model, track](double t) {  // trailer -> road frame of the tractor
       const Pose now = track->pose(t);
       const double d = track->distance_at(t);
       const V3 kingpin = now * model.kingpin;
-      const V3 axle = pose_at_distance(*track, d + model.kingpin.x() - model.trailer_axles).translation() +
-                      V3(0, 0, model.kingpin.z());
+      const V3 axle =
+          pose_at_distance(*track, d + model.kingpin.x() - model.trailer_axles).translation() +
+          V3(0, 0, model.kingpin.z());
       const V3 x = (kingpin - axle).normalized(), y = V3::UnitZ().cross(x).normalized();
       Pose world = Pose::Identity();
       world.linear() << x, y, x.cross(y);
@@ -250,13 +285,15 @@ struct ActorLibrary::Impl {
     for (const WheelMount& mount : model.mounts) {
       const double radius = model.wheel_radius[std::size_t(mount.mesh)];
       const double wheelbase = model.wheelbase;
-      Part part{model.wheels[std::size_t(mount.mesh)],
-                [=](double t) {
+      Part part{model.wheels[std::size_t(mount.mesh)], [=](double t) {
                   const double d = track->distance_at(t);
                   const Pose roll(Eigen::AngleAxisd(d / radius, V3::UnitY()));
-                  if (mount.trailer) return Pose(road_in_actor(t) * trailer(t) * at(mount.hub) * roll);
+                  if (mount.trailer)
+                    return Pose(road_in_actor(t) * trailer(t) * at(mount.hub) * roll);
                   const double steer =
-                      mount.steers ? std::clamp(std::atan(wheelbase * curvature(*track, d)), -0.6, 0.6) : 0;
+                      mount.steers
+                          ? std::clamp(std::atan(wheelbase * curvature(*track, d)), -0.6, 0.6)
+                          : 0;
                   return Pose(road_in_actor(t) * at(mount.hub) *
                               Pose(Eigen::AngleAxisd(steer, V3::UnitZ())) * roll);
                 }};
@@ -264,10 +301,11 @@ struct ActorLibrary::Impl {
       actor.parts.push_back(part);
     }
     if (model.cranks) {
-      Part part{model.cranks, [=](double t) {
-                  const double turns = track->distance_at(t) / (model.wheel_radius.front() * model.gear);
-                  return Pose(at(model.bottom_bracket) * Pose(Eigen::AngleAxisd(turns, V3::UnitY())));
-                }};
+      Part part{
+          model.cranks, [=](double t) {
+            const double turns = track->distance_at(t) / (model.wheel_radius.front() * model.gear);
+            return Pose(at(model.bottom_bracket) * Pose(Eigen::AngleAxisd(turns, V3::UnitY())));
+          }};
       part.materials = slots;
       actor.parts.push_back(part);
     }
@@ -306,9 +344,12 @@ std::vector<Actor> ActorLibrary::vehicle_of(Family family, int variant, Livery l
   if (livery == Livery::Taxi || livery == Livery::Police) {
     auto& roof = lib.roofs[livery];
     if (!roof) roof = std::make_shared<const Mesh>(livery_roof(livery));
-    actor.parts.push_back({roof, [z = model.roof_z, x = model.roof_x](double) {
+    actor.parts.push_back({roof,
+                           [z = model.roof_z, x = model.roof_x](double) {
                              return Pose(Eigen::Translation3d(x, 0, z - 0.01));
-                           }, {}, slots});
+                           },
+                           {},
+                           slots});
   }
   std::vector<Actor> actors{std::move(actor)};
   if (family != Family::Bicycle && family != Family::Motorbike) return actors;
@@ -340,8 +381,8 @@ std::vector<Actor> ActorLibrary::pack_vehicle(std::shared_ptr<const Mesh> body,
         wheels.mounts.push_back({V3(axle, side * pack.track, pack.wheel_radius), axle > 0, false,
                                  side > 0 ? left : left + 1});
     wheels.wheelbase = pack.axles.front() - pack.axles.back();
-    const std::vector<std::uint16_t> slots = lib.vehicle_slots(
-        wheels, Livery::Plain, derived_seed(lib.seed, instance, 0x7061636bull));
+    const std::vector<std::uint16_t> slots =
+        lib.vehicle_slots(wheels, Livery::Plain, derived_seed(lib.seed, instance, 0x7061636bull));
     lib.add_running_gear(actor, wheels, slots, track, [](double) { return Pose::Identity(); });
   }
   return {std::move(actor)};
@@ -377,9 +418,10 @@ Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<c
     for (const V3& c : seen)
       where += " (" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
                std::to_string(c.z() - height) + ")";
-    throw std::invalid_argument("no ego vehicle fits round the rig's cameras at" + where +
-                                " (rig frame, m): each must be " + std::to_string(kEgoClearance) +
-                                " m outside the car; move them or leave the ego undrawn (--no-ego)");
+    throw std::invalid_argument(
+        "no ego vehicle fits round the rig's cameras at" + where +
+        " (rig frame, m): each must be " + std::to_string(kEgoClearance) +
+        " m outside the car; move them or leave the ego undrawn (--no-ego)");
   }
   const VehicleModel& model = *chosen;
   const Pose lowered(Eigen::Translation3d(0, 0, -height));

@@ -72,7 +72,8 @@ Showcase showcase(const std::string& name, int variant) {
   for (char c : name) seed = mix_bits(seed * 131 + std::uint64_t(c));
   ActorLibrary library(scene, seed, name == "umbrella");
   for (const VehicleEntry& v : kVehicles)
-    if (name == v.name) scene.actors = library.vehicle_of(v.family, variant % 3, v.livery, 1, straight(0, 0));
+    if (name == v.name)
+      scene.actors = library.vehicle_of(v.family, variant % 3, v.livery, 1, straight(0, 0));
   for (const char* person : kPeople)
     if (name == person)
       scene.actors = {library.person_of(person_look(name, variant), 1,

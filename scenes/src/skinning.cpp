@@ -25,9 +25,11 @@ void skin(const Mesh& rest, const std::vector<Pose>& bones, Mesh& posed) {
     posed = rest;
   for (std::size_t v = 0; v < rest.vertices.size(); ++v) {
     const Eigen::Matrix<double, 3, 4> m = blended(rest, v, bones);
-    posed.vertices[v] = (m.leftCols<3>() * rest.vertices[v].cast<double>() + m.col(3)).cast<float>();
+    posed.vertices[v] =
+        (m.leftCols<3>() * rest.vertices[v].cast<double>() + m.col(3)).cast<float>();
     if (!rest.normals.empty())
-      posed.normals[v] = (m.leftCols<3>() * rest.normals[v].cast<double>()).normalized().cast<float>();
+      posed.normals[v] =
+          (m.leftCols<3>() * rest.normals[v].cast<double>()).normalized().cast<float>();
     if (!rest.tangents.empty()) {
       const Vec3 t = (m.leftCols<3>() * rest.tangents[v].head<3>().cast<double>()).normalized();
       posed.tangents[v] << t.cast<float>(), rest.tangents[v].w();

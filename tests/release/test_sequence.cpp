@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 
-#include "flowscape/scenes/skinning.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/scenes/skinning.h"
 #include "tiny_release.h"
 
 using namespace flowscape;

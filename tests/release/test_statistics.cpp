@@ -1,9 +1,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "flowscape/release/classes.h"
 #include "flowscape/core/files.h"
 #include "flowscape/quality/flow_datasets.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/statistics.h"
 #include "temp_dir.h"
@@ -103,9 +103,8 @@ TEST_CASE("ego speed and yaw rate follow a rig driving a circle") {
   }
   CHECK(s["yaw_change_degrees"].get<double>() == Approx(30 * dtheta * 180 / kPi).epsilon(1e-9));
   // across the +-180 degree seam of the heading the change stays small
-  const nlohmann::json seam =
-      sequence_statistics_json({}, {}, {rig_at(0, 0, kPi - 0.01), rig_at(0, 0, -kPi + 0.01)}, fps,
-                               23);
+  const nlohmann::json seam = sequence_statistics_json(
+      {}, {}, {rig_at(0, 0, kPi - 0.01), rig_at(0, 0, -kPi + 0.01)}, fps, 23);
   CHECK(seam["ego"]["yaw_change_degrees"].get<double>() == Approx(0.02 * 180 / kPi));
 }
 

@@ -271,8 +271,9 @@ TEST_CASE("an articulated part moves with its own pose on top of its actor's") {
   Mesh plate;
   add_box(plate, Eigen::Vector3f(-0.05f, -2, -2), Eigen::Vector3f(0.05f, 2, 2),
           SemanticClass::Dynamic);
-  wheel.parts.push_back(
-      rigid_part(std::move(plate), [spin](double t) { return Pose(Eigen::AngleAxisd(spin * t, Vec3::UnitX())); }));
+  wheel.parts.push_back(rigid_part(std::move(plate), [spin](double t) {
+    return Pose(Eigen::AngleAxisd(spin * t, Vec3::UnitX()));
+  }));
   scene.actors.push_back(std::move(wheel));
   Renderer renderer(scene);
   const int N = 64;

@@ -32,7 +32,8 @@ Mesh plate() {
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < n; ++k) {
       const int a = i * (n + 1) + k, b = a + n + 1;
-      for (const Eigen::Vector3i& t : {Eigen::Vector3i(a, b, b + 1), Eigen::Vector3i(a, b + 1, a + 1)}) {
+      for (const Eigen::Vector3i& t :
+           {Eigen::Vector3i(a, b, b + 1), Eigen::Vector3i(a, b + 1, a + 1)}) {
         mesh.triangles.push_back(t);
         mesh.classes.push_back(SemanticClass::Dynamic);
       }
@@ -59,8 +60,8 @@ Vec3 vertex_at(const Mesh& mesh, int v, double t) {
   const Eigen::Matrix<double, 3, 4> m =
       w[0] * b[0].matrix().topRows<3>() + w[1] * b[1].matrix().topRows<3>();
   // the renderer traces float vertices: so does the expectation
-  const Eigen::Vector3f skinned = (m.leftCols<3>() * mesh.vertices[std::size_t(v)].cast<double>() +
-                                   m.col(3)).cast<float>();
+  const Eigen::Vector3f skinned =
+      (m.leftCols<3>() * mesh.vertices[std::size_t(v)].cast<double>() + m.col(3)).cast<float>();
   return skinned.cast<double>() + Vec3(2, 0, 0);
 }
 
@@ -147,7 +148,8 @@ TEST_CASE("a part fixed to the rig has exactly zero flow in the rig's cameras") 
   // the rig drives forward and turns; a box 1 m ahead of it rides with it (an ego's bonnet), a
   // wall far ahead stands still
   const auto rig = [](double t) {
-    return Pose(Eigen::Translation3d(3 * t, 0.5 * t * t, 0) * Eigen::AngleAxisd(0.4 * t, Vec3::UnitZ()));
+    return Pose(Eigen::Translation3d(3 * t, 0.5 * t * t, 0) *
+                Eigen::AngleAxisd(0.4 * t, Vec3::UnitZ()));
   };
   Scene scene;
   add_box(scene.world, {30, -40, -5}, {31, 40, 20}, SemanticClass::Wall);

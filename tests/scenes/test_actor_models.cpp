@@ -105,13 +105,15 @@ TEST_CASE("a walking foot does not slide while it bears weight, and the leg reac
   const double radius = 6, speed = 1.4;
   for (int k = 0; k <= 600; ++k) {
     const double t = k * track.step, angle = speed * t / radius;
-    Pose pose = Pose(Eigen::Translation3d(radius * std::sin(angle), radius * (1 - std::cos(angle)), 0.15)) *
-                Pose(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
+    Pose pose =
+        Pose(Eigen::Translation3d(radius * std::sin(angle), radius * (1 - std::cos(angle)), 0.15)) *
+        Pose(Eigen::AngleAxisd(angle, Vec3::UnitZ()));
     track.poses.push_back(pose), track.distance.push_back(speed * t);
   }
   const auto shared = std::make_shared<const Track>(track);
   Random random(3);
-  const PersonModel person = build_person(random_look(random, false, false), SemanticClass::Pedestrian);
+  const PersonModel person =
+      build_person(random_look(random, false, false), SemanticClass::Pedestrian);
   const Gait gait = gait_for(person.skeleton, speed, 11, false);
   const BoneTrack bones = walking(person, shared, gait);
   int planted_samples = 0;
@@ -134,8 +136,8 @@ TEST_CASE("a walking foot does not slide while it bears weight, and the leg reac
       // the skinned leg reaches the ankle the gait asks for
       const std::vector<Pose> posed = bones(t);
       const int bone = side > 0 ? kFootL : kFootR;
-      const Vec3 ankle = shared->pose(t) * (posed[std::size_t(bone)] *
-                                            person.skeleton.joints[std::size_t(bone)]);
+      const Vec3 ankle =
+          shared->pose(t) * (posed[std::size_t(bone)] * person.skeleton.joints[std::size_t(bone)]);
       CHECK((ankle - foot.ankle_world).norm() < 0.02);
     }
   }
@@ -175,8 +177,9 @@ TEST_CASE("riders ride their bikes, and parked vehicles and the ego are actors w
       CHECK(actor_class(actor) == SemanticClass::EgoVehicle);
       CHECK(actor.parts.front().on_rig);
       for (double t : {0.0, 0.7, 1.9})  // the body rides with the rig, its height below it
-        CHECK((actor.pose(t).inverse() * city.rig(t)).translation().isApprox(
-            Vec3(0, 0, city.mount.height), 1e-9));
+        CHECK((actor.pose(t).inverse() * city.rig(t))
+                  .translation()
+                  .isApprox(Vec3(0, 0, city.mount.height), 1e-9));
     }
   }
   CHECK(riders > 0);

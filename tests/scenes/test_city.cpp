@@ -89,7 +89,8 @@ TEST_CASE("the same seed gives the same city and another seed another one") {
   REQUIRE(a.scene.actors.size() == a.actors.size());
   int vehicles = 0, walkers = 0;
   for (const ActorRecord& r : a.actors) {
-    vehicles += r.kind != ActorKind::Pedestrian && r.kind != ActorKind::Rider && !r.parked && !r.ego;
+    vehicles +=
+        r.kind != ActorKind::Pedestrian && r.kind != ActorKind::Rider && !r.parked && !r.ego;
     walkers += r.kind == ActorKind::Pedestrian;
   }
   CHECK(vehicles == 30);
@@ -422,14 +423,21 @@ namespace {
 SemanticClass class_of(const ActorRecord& actor) {
   if (actor.ego) return SemanticClass::EgoVehicle;
   switch (actor.kind) {
-    case ActorKind::Pedestrian: return SemanticClass::Pedestrian;
-    case ActorKind::Rider: return SemanticClass::Rider;
-    case ActorKind::Bike: return SemanticClass::Bicycle;
-    case ActorKind::Motorbike: return SemanticClass::Motorcycle;
-    case ActorKind::Bus: return SemanticClass::Bus;
+    case ActorKind::Pedestrian:
+      return SemanticClass::Pedestrian;
+    case ActorKind::Rider:
+      return SemanticClass::Rider;
+    case ActorKind::Bike:
+      return SemanticClass::Bicycle;
+    case ActorKind::Motorbike:
+      return SemanticClass::Motorcycle;
+    case ActorKind::Bus:
+      return SemanticClass::Bus;
     case ActorKind::Truck:
-    case ActorKind::Lorry: return SemanticClass::Truck;
-    default: return SemanticClass::Car;
+    case ActorKind::Lorry:
+      return SemanticClass::Truck;
+    default:
+      return SemanticClass::Car;
   }
 }
 

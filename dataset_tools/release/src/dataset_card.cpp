@@ -191,8 +191,8 @@ std::string licence_text(const ReleaseConfig& c) {
         "share-alike).\n\n| model | licence | copyright | file |\n| --- | --- | --- | --- |\n";
   for (const std::string& pack : c.asset_packs)
     for (const PackModel& m : asset_pack(pack))
-      md << "| " << m.pack << "/" << m.name << " | " << m.licence << " | " << m.copyright
-         << " | `" << m.path << "` |\n";
+      md << "| " << m.pack << "/" << m.name << " | " << m.licence << " | " << m.copyright << " | `"
+         << m.path << "` |\n";
   return md.str();
 }
 
@@ -214,7 +214,8 @@ std::string card_text(const ReleaseConfig& c, const fs::path& out,
   md << "## Reproduce\n\n```\ngen_flowscape --config config.json --out <dir>\n```\nwith "
         "config.json =\n"
      << "```json\n"
-     << to_json(c).dump(1) << "\n```\n\n## Licence\n\n" << licence_text(c);
+     << to_json(c).dump(1) << "\n```\n\n## Licence\n\n"
+     << licence_text(c);
   return md.str();
 }
 

@@ -1,4 +1,3 @@
-#include "flowscape/release/classes.h"
 #include "flowscape/release/explorer.h"
 
 #include <tbb/parallel_for.h>
@@ -13,6 +12,7 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/split.h"
 #include "flowscape/release/statistics.h"
@@ -191,9 +191,8 @@ nlohmann::json write_explorer(const fs::path& release, const fs::path& out,
     const fs::path dir = sequence_dir(release, info.name);
     SequenceMeta meta = read_meta(dir);
     if (meta.statistics.is_null())  // a release from before meta.json recorded them
-      meta.statistics =
-          sequence_statistics_from_files(dir, layout, meta.poses, meta.frames, meta.fps,
-                                         table.size());
+      meta.statistics = sequence_statistics_from_files(dir, layout, meta.poses, meta.frames,
+                                                       meta.fps, table.size());
     statistics_of.push_back(checked_statistics(dir, meta));
     std::vector<int> frames = sampled_frames(meta.frames, options.frames);
     sequences.push_back({info, std::move(meta), std::move(frames)});

@@ -5,8 +5,8 @@
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
-#include "flowscape/renderer/denoise.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/renderer/denoise.h"
 #include "flowscape/scenes/showcase.h"
 
 namespace flowscape {
@@ -15,9 +15,11 @@ namespace {
 // A rig at `azimuth` (radians, 0: in front of the model, on its +x side) looking at the model's
 // middle from a distance that frames it in a 40-degree view.
 FramePair view_from(const Showcase& model, double azimuth) {
-  const double size = std::max(model.length, 1.3 * model.height), distance = 1.2 * size / std::tan(0.35) / 2;
+  const double size = std::max(model.length, 1.3 * model.height),
+               distance = 1.2 * size / std::tan(0.35) / 2;
   const Vec3 target(0, 0, 0.45 * model.height);
-  const Vec3 eye = target + Vec3(distance * std::cos(azimuth), distance * std::sin(azimuth), 0.3 * distance);
+  const Vec3 eye =
+      target + Vec3(distance * std::cos(azimuth), distance * std::sin(azimuth), 0.3 * distance);
   const Vec3 forward = (target - eye).normalized(),
              left = Vec3::UnitZ().cross(forward).normalized(), up = forward.cross(left);
   Pose rig = Pose::Identity();
@@ -48,8 +50,9 @@ std::vector<std::vector<Image<std::uint8_t>>> actor_gallery(const GalleryOptions
       options.indirect_samples = indirect_samples(o.color);
       const ColorLayers layers = renderer.color_layers(camera, pair, options);
       const Image<float> color =
-          o.color.denoise == "none" ? raw_color(layers)
-                                    : denoise(layers, {&camera, gt.depth.view(), gt.instance.view()});
+          o.color.denoise == "none"
+              ? raw_color(layers)
+              : denoise(layers, {&camera, gt.depth.view(), gt.instance.view()});
       row.push_back(linear_to_srgb8(color.view()));
       label_tile(row.back(), name + " " + view);
       if (semantic.data.empty()) semantic = semantic_to_color(gt.semantic.view());

@@ -1,13 +1,12 @@
 #include "flowscape/release/meta.h"
 
-#include "flowscape/release/classes.h"
-
 #include <algorithm>
 #include <fstream>
 #include <limits>
 #include <map>
 
 #include "flowscape/core/files.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 
 namespace flowscape {
@@ -221,8 +220,8 @@ std::string read_release_class_table(const fs::path& release) {
   if (!fs::exists(manifest)) return "carla-0.9.13";
   const nlohmann::json json = read_json(manifest);
   try {
-    const nlohmann::json semantic =
-        json.value("conventions", nlohmann::json::object()).value("semantic", nlohmann::json::object());
+    const nlohmann::json semantic = json.value("conventions", nlohmann::json::object())
+                                        .value("semantic", nlohmann::json::object());
     const std::string name = semantic.value("table", "carla-0.9.13");
     class_table(name);
     return name;

@@ -233,7 +233,8 @@ Box3 extent_box(const Actor& actor, const std::vector<Box3>& boxes, int frames) 
     const Box3& box = boxes[std::size_t(f)];
     const Pose in_actor = actor.pose(Sequence::time(f)).inverse() * box.pose;
     for (int corner = 0; corner < 8; ++corner) {
-      const Vec3 local((corner & 1 ? 0.5 : -0.5) * box.size.x(), (corner & 2 ? 0.5 : -0.5) * box.size.y(),
+      const Vec3 local((corner & 1 ? 0.5 : -0.5) * box.size.x(),
+                       (corner & 2 ? 0.5 : -0.5) * box.size.y(),
                        (corner & 4 ? 0.5 : -0.5) * box.size.z());
       const Vec3 p = in_actor * local;
       lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -276,7 +277,8 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
           actor_motion(actor, t, actor.pose(t).inverse() * box.pose.translation());
       add_box_pose(record, box.pose, "");
       add_box_pose(record, s.city.rig(t).inverse() * box.pose, "_rig");
-      if (detailed) record["centre_fixed"].push_back(vector_json(actor.pose(t) * fixed.pose.translation()));
+      if (detailed)
+        record["centre_fixed"].push_back(vector_json(actor.pose(t) * fixed.pose.translation()));
       record["size"].push_back(vector_json(box.size));
       record["velocity"].push_back(vector_json(motion.linear));
       record["angular_velocity"].push_back(vector_json(motion.angular));

@@ -1,7 +1,5 @@
 #include "flowscape/release/statistics.h"
 
-#include "flowscape/release/classes.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/scenes/model_io.h"
 #include "flowscape/stitcher/geometry.h"
@@ -172,7 +171,8 @@ nlohmann::json sequence_statistics_json(const View& view,
                                         const std::vector<FrameStatistics>& frames,
                                         const std::vector<Pose>& poses, double fps,
                                         int class_count) {
-  std::vector<std::uint64_t> histogram(flow_bin_edges().size(), 0), classes(std::size_t(class_count), 0);
+  std::vector<std::uint64_t> histogram(flow_bin_edges().size(), 0),
+      classes(std::size_t(class_count), 0);
   double flow_sum = 0;
   std::uint64_t pixels = 0, actor = 0, valid = 0, flow_frame_pixels = 0;
   for (const FrameStatistics& f : frames) {

@@ -1,4 +1,3 @@
-#include "flowscape/release/classes.h"
 #include "flowscape/release/writer.h"
 
 #include <map>
@@ -11,6 +10,7 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/release/classes.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/explorer.h"
 #include "flowscape/release/layout.h"
@@ -127,9 +127,8 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
-  const ViewImages images =
-      view_images(std::move(truth), linear_to_srgb8(erp_color.view()), plan.steps,
-                  class_table(config.classes));
+  const ViewImages images = view_images(std::move(truth), linear_to_srgb8(erp_color.view()),
+                                        plan.steps, class_table(config.classes));
   write_single_view(dir, layout, View(), frame, config.frames, images);
   return statistics_of(images, frame, config.frames);
 }
@@ -146,9 +145,8 @@ FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout
     GroundTruth truth = renderer.ground_truth(camera.projection, request);
     const Image<float> color =
         release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
-    const ViewImages images =
-        view_images(std::move(truth), linear_to_srgb8(color.view()), plan.steps,
-                    class_table(config.classes));
+    const ViewImages images = view_images(std::move(truth), linear_to_srgb8(color.view()),
+                                          plan.steps, class_table(config.classes));
     write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
     if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
   }

@@ -15,7 +15,7 @@ VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width
 int add_wheel_meshes(VehicleModel& model, double radius, double width, double rim_share);
 
 VehicleModel car_family(Family family, int variant, bool mirrors);  // cars.cpp
-VehicleModel heavy_family(Family family, int variant);      // heavy_vehicles.cpp
-VehicleModel two_wheeler_family(Family family, int variant);  // two_wheelers.cpp
+VehicleModel heavy_family(Family family, int variant);              // heavy_vehicles.cpp
+VehicleModel two_wheeler_family(Family family, int variant);        // two_wheelers.cpp
 
 }  // namespace flowscape::assets

@@ -8,15 +8,18 @@ namespace {
 
 using M3 = Eigen::Matrix3d;
 
-constexpr double kHeelRock = 0.26, kToeRock = 0.6;    // radians: toes up at heel strike, heel up at toe off
-constexpr double kHeelShare = 0.15, kToeShare = 0.3;  // of the stance: rolling on the heel, on the ball
-constexpr double kReach = 0.995;                      // of the leg's length, at most
+constexpr double kHeelRock = 0.26,
+                 kToeRock = 0.6;  // radians: toes up at heel strike, heel up at toe off
+constexpr double kHeelShare = 0.15,
+                 kToeShare = 0.3;  // of the stance: rolling on the heel, on the ball
+constexpr double kReach = 0.995;   // of the leg's length, at most
 
 M3 about_y(double a) { return Eigen::AngleAxisd(a, V3::UnitY()).toRotationMatrix(); }
 M3 about_z(double a) { return Eigen::AngleAxisd(a, V3::UnitZ()).toRotationMatrix(); }
 double smooth(double s) { return s * s * (3 - 2 * s); }
 
-// A rotation taking the rest frame (bone along rest_dir, bending toward rest_hint) to the posed one.
+// A rotation taking the rest frame (bone along rest_dir, bending toward rest_hint) to the posed
+// one.
 M3 frame_turn(const V3& dir, const V3& hint, const V3& rest_dir, const V3& rest_hint) {
   const auto basis = [](const V3& d, const V3& h) {
     const V3 e3 = d.normalized();
@@ -36,7 +39,8 @@ std::pair<M3, M3> two_bone(const V3& root, const V3& target, double l1, double l
   V3 d = target - root;
   const double reach = std::clamp(d.norm(), 0.25 * (l1 + l2), kReach * (l1 + l2));
   d = d.norm() > 1e-9 ? V3(d.normalized()) : V3(-V3::UnitZ());
-  const double cos_a = std::clamp((l1 * l1 + reach * reach - l2 * l2) / (2 * l1 * reach), -1.0, 1.0);
+  const double cos_a =
+      std::clamp((l1 * l1 + reach * reach - l2 * l2) / (2 * l1 * reach), -1.0, 1.0);
   V3 side = hint - hint.dot(d) * d;
   side = side.norm() > 1e-9 ? V3(side.normalized()) : V3(d.unitOrthogonal());
   const V3 middle = root + l1 * (cos_a * d + std::sqrt(1 - cos_a * cos_a) * side);
@@ -105,7 +109,9 @@ Gait gait_for(const Skeleton& skeleton, double speed, std::uint64_t seed, bool u
 
 Pose pose_at_distance(const Track& track, double distance) {
   const std::vector<double>& d = track.distance;
-  const auto ahead = [](const Pose& p, double by) { return p * Pose(Eigen::Translation3d(by, 0, 0)); };
+  const auto ahead = [](const Pose& p, double by) {
+    return p * Pose(Eigen::Translation3d(by, 0, 0));
+  };
   if (d.empty()) return track.poses.empty() ? Pose::Identity() : track.poses.front();
   if (distance <= d.front()) return ahead(track.poses.front(), distance - d.front());
   if (distance >= d.back()) return ahead(track.poses.back(), distance - d.back());
@@ -129,7 +135,11 @@ FootState foot_state(const Skeleton& s, const Gait& g, const Track& track, int s
   // ball (< 0), and that contact point
   const auto rolled = [&](const V3& ankle, double yaw, double pitch) {
     const V3 forward(std::cos(yaw), std::sin(yaw), 0);
-    const V3 contact = ankle - V3(0, 0, s.ankle) + (pitch > 0 ? -heel : pitch < 0 ? ball : 0) * forward;
+    const V3 contact = ankle - V3(0, 0, s.ankle) +
+                       (pitch > 0   ? -heel
+                        : pitch < 0 ? ball
+                                    : 0) *
+                           forward;
     const V3 arm = ankle - contact;  // from the contact to the ankle, in the foot's vertical plane
     const double along = arm.dot(forward), c = std::cos(pitch), sn = std::sin(pitch);
     const V3 turned = (along * c - arm.z() * sn) * forward + V3(0, 0, along * sn + arm.z() * c);
@@ -139,7 +149,7 @@ FootState foot_state(const Skeleton& s, const Gait& g, const Track& track, int s
   const auto [ankle, yaw] = plant(k);
   if (u < g.stance) {
     const double v = u / g.stance;
-    const double pitch = v < kHeelShare ? kHeelRock * (1 - v / kHeelShare)
+    const double pitch = v < kHeelShare      ? kHeelRock * (1 - v / kHeelShare)
                          : v > 1 - kToeShare ? -kToeRock * (v - (1 - kToeShare)) / kToeShare
                                              : 0;
     const auto [at, contact] = rolled(ankle, yaw, pitch);
@@ -222,8 +232,7 @@ BoneTrack riding(const PersonModel& person, const VehicleModel& bike,
     for (int i = 0; i < 2; ++i) {
       const int side = i == 0 ? 1 : -1;
       if (pedals) {  // the left pedal leads the crank's +x arm, the right one the other
-        const V3 pedal = bike.bottom_bracket +
-                         about_y(crank) * V3(side * bike.crank_length, 0, 0) +
+        const V3 pedal = bike.bottom_bracket + about_y(crank) * V3(side * bike.crank_length, 0, 0) +
                          V3(0, side * 0.13, 0);
         ankle[i] = pedal + V3(-0.05, 0, 0.07);
       } else {
@@ -239,11 +248,12 @@ BoneTrack riding(const PersonModel& person, const VehicleModel& bike,
       const int o = side > 0 ? 0 : 3;
       const V3 shoulder = bones[kChest] * s.joints[std::size_t(kUpperArmL + o)];
       const V3 grip = bike.grips + V3(-0.06, side * bike.grip_spread, 0.0);
-      const V3 rest_upper = s.joints[std::size_t(kForearmL + o)] - s.joints[std::size_t(kUpperArmL + o)];
+      const V3 rest_upper =
+          s.joints[std::size_t(kForearmL + o)] - s.joints[std::size_t(kUpperArmL + o)];
       const V3 rest_fore = s.joints[std::size_t(kHandL + o)] - s.joints[std::size_t(kForearmL + o)];
-      const auto [upper, fore] = two_bone(shoulder, grip, s.upper_arm, s.forearm,
-                                          V3(-0.4, side * 0.8, -1), rest_upper, rest_fore,
-                                          V3(-0.4, side * 0.8, -1));
+      const auto [upper, fore] =
+          two_bone(shoulder, grip, s.upper_arm, s.forearm, V3(-0.4, side * 0.8, -1), rest_upper,
+                   rest_fore, V3(-0.4, side * 0.8, -1));
       local[std::size_t(kUpperArmL + o)] = world_of(bones, kChest).transpose() * upper;
       local[std::size_t(kForearmL + o)] = upper.transpose() * fore;
     }

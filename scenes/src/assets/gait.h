@@ -15,13 +15,13 @@
 namespace flowscape::assets {
 
 struct Gait {
-  double step = 0.7;           // metres (a stride is two steps)
-  double stance = 0.6;         // share of the cycle a foot bears weight (running: less)
-  double phase = 0;            // at distance 0, cycles
-  double clearance = 0.08;     // how high a swinging foot lifts, metres
-  double arm_swing = 0.35;     // radians
+  double step = 0.7;        // metres (a stride is two steps)
+  double stance = 0.6;      // share of the cycle a foot bears weight (running: less)
+  double phase = 0;         // at distance 0, cycles
+  double clearance = 0.08;  // how high a swinging foot lifts, metres
+  double arm_swing = 0.35;  // radians
   double look_period = 6, look_phase = 0, look_amplitude = 0.35;
-  bool umbrella = false;       // the right arm holds an umbrella up
+  bool umbrella = false;  // the right arm holds an umbrella up
 };
 // A gait for a person walking at about `speed` m/s (running from 2.2 m/s), varied by `seed`.
 Gait gait_for(const Skeleton& skeleton, double speed, std::uint64_t seed, bool umbrella);

@@ -12,8 +12,8 @@ using C = SemanticClass;
 Pose at(double x, double y, double z) { return Pose(Eigen::Translation3d(x, y, z)); }
 
 void box(Mesh& mesh, const V3& lo, const V3& hi, Slot slot, double radius = 0.02) {
-  add_rounded_box(mesh, at((lo + hi).x() / 2, (lo + hi).y() / 2, (lo + hi).z() / 2),
-                  (hi - lo) / 2, radius, C::Vehicles, slot, 2);
+  add_rounded_box(mesh, at((lo + hi).x() / 2, (lo + hi).y() / 2, (lo + hi).z() / 2), (hi - lo) / 2,
+                  radius, C::Vehicles, slot, 2);
 }
 
 // Rows of seats, a floor and linings inside a bus, from x0 to x1.
@@ -42,8 +42,12 @@ VehicleModel city_bus(int variant) {
   const double a = s.length / 2, b = s.width / 2, h = random.uniform(2.95, 3.1);
   s.plan_exponent = 14, s.tumblehome = 0.02, s.shoulder = 0, s.bulge = 0.01, s.crown = 0.02;
   s.roof_radius = 0.15, s.sill_radius = 0.08, s.trim_height = 0.15;
-  s.top = Curve({{-1, h - 0.2}, {-0.99, h - 0.08}, {-0.975, h - 0.02}, {0.975, h},
-                 {0.99, h - 0.07}, {1, h - 0.2}})
+  s.top = Curve({{-1, h - 0.2},
+                 {-0.99, h - 0.08},
+                 {-0.975, h - 0.02},
+                 {0.975, h},
+                 {0.99, h - 0.07},
+                 {1, h - 0.2}})
               .scaled(a, 1);
   s.belt = Curve({{-1, 1.3}, {0.93, 1.25}, {0.965, 0.95}, {1, 0.95}}).scaled(a, 1);
   s.bottom = Curve({{-1, 0.55}, {-0.96, 0.35}, {0.96, 0.33}, {1, 0.5}}).scaled(a, 1);
@@ -125,8 +129,8 @@ VehicleModel box_truck(int variant) {
   box(body, V3(-a, -1.24, 1.1), V3(a - cab - 0.1, 1.24, box_top), kLivery, 0.05);
   box(body, V3(-a + 0.4, -0.5, 0.7), V3(a - cab + 0.2, 0.5, 1.1), kUnderbody);  // chassis
   for (double side : {-1.0, 1.0})  // side guards between the axles
-    box(body, V3(rear_axle + 0.7, side * 1.17 - 0.02, 0.45), V3(front_axle - 0.8, side * 1.17 + 0.02, 0.75),
-        kTrim);
+    box(body, V3(rear_axle + 0.7, side * 1.17 - 0.02, 0.45),
+        V3(front_axle - 0.8, side * 1.17 + 0.02, 0.75), kTrim);
   tail_end(body, -a, 1.24, 0.85);
   VehicleModel model;
   model.family = Family::BoxTruck;
@@ -153,8 +157,9 @@ VehicleModel lorry(int variant) {
   const double tail = a - tractor;
   box(body, V3(tail, -0.5, 0.65), V3(a - cab + 0.3, 0.5, 1.05), kUnderbody);  // chassis
   for (double side : {-1.0, 1.0}) {
-    add_cylinder(body, at(a - cab - 0.5, side * 0.9, 0.72) * Pose(Eigen::AngleAxisd(kPi / 2, V3::UnitY())),
-                 0.3, 0.9, {C::Vehicles, kChrome}, 16);  // fuel tanks
+    add_cylinder(
+        body, at(a - cab - 0.5, side * 0.9, 0.72) * Pose(Eigen::AngleAxisd(kPi / 2, V3::UnitY())),
+        0.3, 0.9, {C::Vehicles, kChrome}, 16);  // fuel tanks
     box(body, V3(tail - 0.05, side * 1.1 - 0.3, 0.9), V3(tail + 0.05, side * 1.1 + 0.1, 1.25),
         kTrim);  // mudguards
   }
@@ -194,9 +199,12 @@ VehicleModel lorry(int variant) {
 
 VehicleModel heavy_family(Family family, int variant) {
   switch (family) {
-    case Family::CityBus: return city_bus(variant);
-    case Family::BoxTruck: return box_truck(variant);
-    default: return lorry(variant);
+    case Family::CityBus:
+      return city_bus(variant);
+    case Family::BoxTruck:
+      return box_truck(variant);
+    default:
+      return lorry(variant);
   }
 }
 

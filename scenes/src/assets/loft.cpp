@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <stdexcept>
+#include <tuple>
 
 namespace flowscape::assets {
 namespace {
@@ -16,8 +16,8 @@ double signed_volume(const Mesh& mesh, std::size_t first_triangle) {
   double volume = 0;
   for (std::size_t t = first_triangle; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    volume += mesh.vertices[tri[0]].cast<double>().dot(
-                  mesh.vertices[tri[1]].cast<double>().cross(mesh.vertices[tri[2]].cast<double>())) /
+    volume += mesh.vertices[tri[0]].cast<double>().dot(mesh.vertices[tri[1]].cast<double>().cross(
+                  mesh.vertices[tri[2]].cast<double>())) /
               6;
   }
   return volume;
@@ -27,14 +27,16 @@ double signed_volume(const Mesh& mesh, std::size_t first_triangle) {
 void flip_from(Mesh& mesh, std::size_t first_triangle, std::size_t first_vertex) {
   for (std::size_t t = first_triangle; t < mesh.triangles.size(); ++t)
     std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
-  for (std::size_t v = first_vertex; v < mesh.normals.size(); ++v) mesh.normals[v] = -mesh.normals[v];
+  for (std::size_t v = first_vertex; v < mesh.normals.size(); ++v)
+    mesh.normals[v] = -mesh.normals[v];
 }
 
 // Keeps the per-vertex arrays of a mesh that has them in step with its vertices.
 void pad_attributes(Mesh& mesh, std::size_t vertices_before) {
   if (mesh.normals.size() < vertices_before) mesh.normals.resize(vertices_before, {0, 0, 1});
   if (mesh.uvs.size() < vertices_before) mesh.uvs.resize(vertices_before, {0, 0});
-  if (mesh.materials.size() < mesh.triangles.size()) mesh.materials.resize(mesh.triangles.size(), 0);
+  if (mesh.materials.size() < mesh.triangles.size())
+    mesh.materials.resize(mesh.triangles.size(), 0);
 }
 
 }  // namespace
@@ -211,8 +213,7 @@ void add_tube(Mesh& mesh, const std::vector<V3>& path, const std::vector<double>
   Grid grid{n + 2, sides, true, {}};
   V3 normal = Eigen::Vector3d::UnitZ();
   const auto ring = [&](int i) {
-    const V3 tangent =
-        (path[std::min(i + 1, n - 1)] - path[std::max(i - 1, 0)]).normalized();
+    const V3 tangent = (path[std::min(i + 1, n - 1)] - path[std::max(i - 1, 0)]).normalized();
     normal = (normal - normal.dot(tangent) * tangent);
     if (normal.norm() < 1e-6) normal = tangent.unitOrthogonal();
     normal.normalize();

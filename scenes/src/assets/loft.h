@@ -46,7 +46,8 @@ struct QuadPaint {
 void add_grid(Mesh& mesh, const Grid& grid, const std::function<QuadPaint(int, int)>& paint);
 
 // A surface of revolution about the y axis (a wheel's axle): `profile` points (radius, y) from one
-// end to the other, `sides` facets around; closed ends when the profile starts and ends on the axis.
+// end to the other, `sides` facets around; closed ends when the profile starts and ends on the
+// axis.
 void add_lathe(Mesh& mesh, const std::vector<V2>& profile, int sides, SemanticClass cls,
                std::uint16_t slot);
 // A tube along a polyline with circular sections of the given radii (one per point), capped.

@@ -38,7 +38,8 @@ Measures measures(const Look& look) {
   m.chest_w = w * (0.099 - 0.006 * f) * b, m.chest_d = w * (0.06 + 0.003 * f) * b;
   m.shoulder_w = m.shoulder_y + w * 0.02;
   const double limb = w * std::sqrt(b) * (1 - 0.06 * f);
-  m.thigh_r = limb * 0.047, m.knee_r = limb * 0.029, m.calf_r = limb * 0.033, m.ankle_r = limb * 0.019;
+  m.thigh_r = limb * 0.047, m.knee_r = limb * 0.029, m.calf_r = limb * 0.033,
+  m.ankle_r = limb * 0.019;
   m.upper_arm_r = limb * 0.025, m.elbow_r = limb * 0.018, m.forearm_r = limb * 0.02;
   m.wrist_r = limb * 0.014, m.neck_r = limb * 0.033;
   m.head_w = H * (look.child ? 0.058 : 0.044), m.head_d = H * (look.child ? 0.07 : 0.056);
@@ -121,7 +122,8 @@ Mesh limb(const std::vector<V3>& joints, const std::vector<std::pair<double, dou
   std::vector<double> shares;
   const auto ring = [&](double share, double radius) {
     const double h = 0.01;
-    const V3 axis = (point_at(std::min(share + h, 1.0)) - point_at(std::max(share - h, 0.0))).normalized();
+    const V3 axis =
+        (point_at(std::min(share + h, 1.0)) - point_at(std::max(share - h, 0.0))).normalized();
     const V3 u = (V3::UnitX() - V3::UnitX().dot(axis) * axis).normalized(), v = axis.cross(u);
     const V3 centre = point_at(share);
     for (int k = 0; k < sides; ++k) {
@@ -160,8 +162,9 @@ struct Builder {
   void make_skeleton() {
     Skeleton& s = skeleton;
     s.height = m.H;
-    s.parent = {-1, kPelvis, kSpine, kChest, kNeck, kChest, kUpperArmL, kForearmL, kChest,
-                kUpperArmR, kForearmR, kPelvis, kThighL, kShinL, kPelvis, kThighR, kShinR};
+    s.parent = {-1,         kPelvis,   kSpine,  kChest,     kNeck,     kChest,
+                kUpperArmL, kForearmL, kChest,  kUpperArmR, kForearmR, kPelvis,
+                kThighL,    kShinL,    kPelvis, kThighR,    kShinR};
     s.joints[kPelvis] = {0, 0, m.hip};
     s.joints[kSpine] = {0, 0, m.waist};
     s.joints[kChest] = {0, 0, m.chest - 0.04 * m.H};
@@ -189,14 +192,16 @@ struct Builder {
       return blend(kPelvis, thigh, 0.55 * ramp(-z, -(m.hip - 0.03 * H), 0.035 * H));
     }
     if (z < m.waist) return blend(kPelvis, kSpine, ramp(z, m.waist, 0.035 * H));
-    if (z < m.chest - 0.04 * H) return blend(kSpine, kChest, ramp(z, m.chest - 0.04 * H, 0.035 * H));
+    if (z < m.chest - 0.04 * H)
+      return blend(kSpine, kChest, ramp(z, m.chest - 0.04 * H, 0.035 * H));
     return blend(kChest, kNeck, ramp(z, m.neck_base + 0.005 * H, 0.008 * H));
   }
 
   Weights leg_weights(const V3& p, int side) const {
     const int o = side > 0 ? 0 : 3;
     const double z = p.z();
-    if (z > m.knee) return blend(kThighL + o, kPelvis, 0.4 * ramp(z, m.hip + 0.01 * m.H, 0.02 * m.H));
+    if (z > m.knee)
+      return blend(kThighL + o, kPelvis, 0.4 * ramp(z, m.hip + 0.01 * m.H, 0.02 * m.H));
     if (z > m.ankle + 0.02 * m.H)
       return blend(kShinL + o, kThighL + o, ramp(z, m.knee, 0.03 * m.H));
     return blend(kShinL + o, kFootL + o, 1 - ramp(z, m.ankle, 0.012 * m.H));
@@ -217,9 +222,12 @@ struct Builder {
   bool long_sleeves() const { return look.top != Look::Top::TShirt; }
   double hem() const {  // where the bottom garment's legs end
     switch (look.bottom) {
-      case Look::Bottom::Shorts: return m.knee + 0.05 * m.H;
-      case Look::Bottom::Trousers: return -1;
-      default: return m.H;  // skirt / dress: bare legs (tights look like skin at this scale)
+      case Look::Bottom::Shorts:
+        return m.knee + 0.05 * m.H;
+      case Look::Bottom::Trousers:
+        return -1;
+      default:
+        return m.H;  // skirt / dress: bare legs (tights look like skin at this scale)
     }
   }
 
@@ -230,22 +238,23 @@ struct Builder {
         {m.crotch, {V3(-0.006 * H, 0, 0), 0.82 * m.hip_w, 0.92 * m.hip_d}},
         {m.hip, {V3(-0.008 * H, 0, 0), m.hip_w, m.hip_d}},
         {m.waist, {V3(0, 0, 0), m.waist_w * jacket, m.waist_d * jacket}},
-        {m.chest - 0.05 * H, {V3(0.003 * H, 0, 0), (m.waist_w + m.chest_w) / 2 * jacket,
-                              (m.waist_d + m.chest_d) / 2 * jacket}},
+        {m.chest - 0.05 * H,
+         {V3(0.003 * H, 0, 0), (m.waist_w + m.chest_w) / 2 * jacket,
+          (m.waist_d + m.chest_d) / 2 * jacket}},
         {m.chest, {V3(0.006 * H, 0, 0), m.chest_w * jacket, m.chest_d * jacket}},
         {m.shoulder - 0.03 * H, {V3(0, 0, 0), 1.04 * m.chest_w * jacket, 0.9 * m.chest_d * jacket}},
         {m.shoulder, {V3(-0.004 * H, 0, 0), m.shoulder_w * jacket, 0.72 * m.chest_d * jacket}},
         {m.neck_base - 0.006 * H, {V3(-0.006 * H, 0, 0), 0.55 * m.shoulder_w, 0.6 * m.chest_d}},
         {m.neck_base + 0.004 * H, {V3(-0.006 * H, 0, 0), 1.2 * m.neck_r, 1.15 * m.neck_r}}};
     std::vector<Ring> rings;
-    for (const auto& [z, ring] : rows) rings.push_back({ring.centre + V3(0, 0, z), ring.width, ring.depth});
+    for (const auto& [z, ring] : rows)
+      rings.push_back({ring.centre + V3(0, 0, z), ring.width, ring.depth});
     const double waist = m.waist - 0.01 * H;
-    add_skinned(mesh,
-                tube_through(rings, 2.6, cls,
-                             [&](const V3& p) {
-                               return p.z() < waist ? fixed(kBottom) : fixed(kTop);
-                             }),
-                [&](const V3& p) { return torso_weights(p); });
+    add_skinned(
+        mesh,
+        tube_through(rings, 2.6, cls,
+                     [&](const V3& p) { return p.z() < waist ? fixed(kBottom) : fixed(kTop); }),
+        [&](const V3& p) { return torso_weights(p); });
   }
 
   void add_legs() {
@@ -301,8 +310,9 @@ struct Builder {
     for (const Ring& r : rings)
       for (int k = 0; k < sides; ++k) {
         const double a = 2 * kPi * k / sides, c = std::cos(a), s = std::sin(a);
-        grid.points.push_back(r.centre + V3(0, r.width * std::copysign(std::pow(std::abs(c), 0.6), c),
-                                            r.depth * std::copysign(std::pow(std::abs(s), 0.6), s)));
+        grid.points.push_back(r.centre +
+                              V3(0, r.width * std::copysign(std::pow(std::abs(c), 0.6), c),
+                                 r.depth * std::copysign(std::pow(std::abs(s), 0.6), s)));
       }
     grid.points.insert(grid.points.end(), sides, rings.back().centre);
     Mesh out;
@@ -314,8 +324,7 @@ struct Builder {
     for (int side : {1, -1}) {
       const V3 s = shoulder(side), e = elbow(side), w = wrist(side);
       const V3 top = s + V3(0, -side * 0.012 * m.H, 0.01 * m.H);
-      const double l0 = (s - top).norm(), l1 = m.upper_arm, l2 = m.forearm,
-                   total = l0 + l1 + l2;
+      const double l0 = (s - top).norm(), l1 = m.upper_arm, l2 = m.forearm, total = l0 + l1 + l2;
       const auto share = [&](double d) { return d / total; };
       const std::vector<std::pair<double, double>> radii = {
           {0, 0.75 * m.upper_arm_r},
@@ -333,7 +342,8 @@ struct Builder {
       // the hand: a flattened mitten along the forearm's line, and a thumb
       const V3 dir = (w - e).normalized();
       Mesh hand;
-      add_ellipsoid(hand, V3::Zero(), V3(0.012 * m.H, 0.025 * m.H, 0.05 * m.H), cls, kSkinTone, 6, 10);
+      add_ellipsoid(hand, V3::Zero(), V3(0.012 * m.H, 0.025 * m.H, 0.05 * m.H), cls, kSkinTone, 6,
+                    10);
       add_ellipsoid(hand, V3(0.012 * m.H, -side * 0.012 * m.H, 0.01 * m.H),
                     V3(0.008 * m.H, 0.008 * m.H, 0.022 * m.H), cls, kSkinTone, 4, 8);
       const Eigen::Quaterniond turn = Eigen::Quaterniond::FromTwoVectors(V3(0, 0, -1), dir);
@@ -360,7 +370,8 @@ struct Builder {
 
   void add_head() {
     const auto head = [](const V3&) { return only(kHead); };
-    add_skinned(mesh, tube_through(head_rings(1), 2.2, cls, [](const V3&) { return fixed(kSkinTone); }),
+    add_skinned(mesh,
+                tube_through(head_rings(1), 2.2, cls, [](const V3&) { return fixed(kSkinTone); }),
                 head);
     const V3 c = head_centre();
     Mesh parts;
@@ -376,8 +387,12 @@ struct Builder {
     std::vector<Ring> neck;
     for (double z : {m.neck_base - 0.02 * m.H, m.chin + 0.02 * m.H})
       neck.push_back({V3(0, 0, z), m.neck_r, m.neck_r});
-    add_skinned(mesh, tube_through(neck, 2, cls, [](const V3&) { return fixed(kSkinTone); }, true, 10),
-                [&](const V3& p) { return blend(kNeck, kHead, ramp(p.z(), m.chin + 0.005 * m.H, 0.01 * m.H)); });
+    add_skinned(mesh,
+                tube_through(
+                    neck, 2, cls, [](const V3&) { return fixed(kSkinTone); }, true, 10),
+                [&](const V3& p) {
+                  return blend(kNeck, kHead, ramp(p.z(), m.chin + 0.005 * m.H, 0.01 * m.H));
+                });
   }
 
   void add_hair() {
@@ -387,8 +402,7 @@ struct Builder {
     const double grow = look.hair == Hair::Bob || look.hair == Hair::Long ? 1.12 : 1.06;
     const std::vector<Ring> rings = head_rings(cap ? 1.08 : grow);
     // the hair line: low at the back, above the ears at the sides, the forehead at the front
-    const double front = cap ? 0.72 : 0.8,
-                 back = look.hair == Hair::Short || cap ? 0.3 : 0.12;
+    const double front = cap ? 0.72 : 0.8, back = look.hair == Hair::Short || cap ? 0.3 : 0.12;
     Mesh hair = tube_through(rings, 2.2, cls, [&](const V3&) { return fixed(cap ? kBag : kHair); });
     const V3 c = head_centre();
     // keep the triangles above the hair line (an open shell); `facing`: +1 front, -1 back
@@ -413,16 +427,19 @@ struct Builder {
       add_ellipsoid(extra, c + V3(0.95 * m.head_d, 0, 0.8 * m.head_h),
                     V3(0.06 * m.H, 0.06 * m.H, 0.006 * m.H), cls, kBag, 4, 12);
     if (look.hair == Hair::Ponytail)
-      add_tube(extra, {c + V3(-0.95 * m.head_d, 0, 0.6 * m.head_h), c + V3(-1.2 * m.head_d, 0, 0.2 * m.head_h),
-                       c + V3(-1.1 * m.head_d, 0, -0.3 * m.head_h)},
-               {0.02 * m.H, 0.018 * m.H, 0.008 * m.H}, 8, cls, kHair);
+      add_tube(
+          extra,
+          {c + V3(-0.95 * m.head_d, 0, 0.6 * m.head_h), c + V3(-1.2 * m.head_d, 0, 0.2 * m.head_h),
+           c + V3(-1.1 * m.head_d, 0, -0.3 * m.head_h)},
+          {0.02 * m.H, 0.018 * m.H, 0.008 * m.H}, 8, cls, kHair);
     if (!extra.vertices.empty()) add_skinned(mesh, extra, [](const V3&) { return only(kHead); });
     if (look.hair == Hair::Long) {  // down the back to the shoulder blades
       std::vector<Ring> curtain;
       for (double z : {c.z() + 0.5 * m.head_h, c.z(), m.shoulder - 0.07 * m.H})
         curtain.push_back({V3(-0.75 * m.head_d, 0, z), 1.05 * m.head_w, 0.35 * m.head_d});
-      add_skinned(mesh, tube_through(curtain, 2.4, cls, [](const V3&) { return fixed(kHair); }),
-                  [&](const V3& p) { return blend(kChest, kHead, ramp(p.z(), m.chin, 0.03 * m.H)); });
+      add_skinned(
+          mesh, tube_through(curtain, 2.4, cls, [](const V3&) { return fixed(kHair); }),
+          [&](const V3& p) { return blend(kChest, kHead, ramp(p.z(), m.chin, 0.03 * m.H)); });
     }
   }
 
@@ -431,14 +448,17 @@ struct Builder {
     const bool skirt = look.bottom == Look::Bottom::Skirt || look.bottom == Look::Bottom::Dress;
     const bool coat = look.top == Look::Top::Coat;
     if (!skirt && !coat) return;
-    const double top = coat ? m.shoulder - 0.01 * H : m.waist, bottom = coat ? m.hip - 0.17 * H : m.knee + 0.06 * H;
+    const double top = coat ? m.shoulder - 0.01 * H : m.waist,
+                 bottom = coat ? m.hip - 0.17 * H : m.knee + 0.06 * H;
     std::vector<Ring> rings;
     const int n = 6;
     for (int k = 0; k < n; ++k) {
       const double s = double(k) / (n - 1), z = bottom + (top - bottom) * s;
       double w, d;
-      if (z > m.chest) w = m.chest_w * 1.08, d = m.chest_d * 1.12;
-      else if (z > m.waist) w = m.waist_w * 1.1, d = m.waist_d * 1.15;
+      if (z > m.chest)
+        w = m.chest_w * 1.08, d = m.chest_d * 1.12;
+      else if (z > m.waist)
+        w = m.waist_w * 1.1, d = m.waist_d * 1.15;
       else {
         const double flare = (m.waist - z) / (m.waist - bottom);
         w = m.hip_w * (1.08 + 0.2 * flare), d = m.hip_d * (1.15 + 0.35 * flare);
@@ -446,7 +466,8 @@ struct Builder {
       rings.push_back({V3(-0.004 * H, 0, z), w, d});
     }
     const std::uint16_t slot = coat ? kTop : kBottom;
-    Mesh garment = tube_through(rings, 2.4, cls, [&](const V3&) { return slot; }, false, 16);
+    Mesh garment = tube_through(
+        rings, 2.4, cls, [&](const V3&) { return slot; }, false, 16);
     add_skinned(mesh, garment, [&](const V3& p) {
       if (p.z() > m.hip) return torso_weights(p);
       const double s = std::clamp((m.hip - p.z()) / (m.hip - bottom), 0.0, 1.0);
@@ -459,7 +480,8 @@ struct Builder {
     const double H = m.H;
     if (look.bag == Look::Bag::Backpack) {
       Mesh bag;
-      add_rounded_box(bag, Pose(Eigen::Translation3d(-m.chest_d - 0.045 * H, 0, m.chest - 0.03 * H)),
+      add_rounded_box(bag,
+                      Pose(Eigen::Translation3d(-m.chest_d - 0.045 * H, 0, m.chest - 0.03 * H)),
                       V3(0.04 * H, 0.085 * H, 0.115 * H), 0.025 * H, cls, kBag, 2);
       add_skinned(mesh, bag, [](const V3&) { return only(kChest); });
     } else if (look.bag == Look::Bag::Shoulder) {
@@ -474,8 +496,8 @@ struct Builder {
     const V3 hand = wrist(-1) + (wrist(-1) - elbow(-1)).normalized() * 0.045 * H;
     Mesh umbrella;
     const double stick = 0.5 * H, radius = 0.5;
-    add_tube(umbrella, {hand - V3(0.05 * H, 0, 0), hand + V3(stick, 0, 0)}, {0.006 * H, 0.006 * H}, 6,
-             cls, kUmbrella);
+    add_tube(umbrella, {hand - V3(0.05 * H, 0, 0), hand + V3(stick, 0, 0)}, {0.006 * H, 0.006 * H},
+             6, cls, kUmbrella);
     Mesh canopy;
     std::vector<V2> dome;
     for (int k = 0; k <= 6; ++k) {
@@ -499,8 +521,9 @@ Look random_look(Random& random, bool child, bool rain) {
   Look look;
   look.child = child;
   look.female = random.chance(0.5);
-  look.height = child ? random.uniform(1.0, 1.45)
-                      : look.female ? random.uniform(1.52, 1.78) : random.uniform(1.64, 1.94);
+  look.height = child         ? random.uniform(1.0, 1.45)
+                : look.female ? random.uniform(1.52, 1.78)
+                              : random.uniform(1.64, 1.94);
   look.build = child ? random.uniform(0.9, 1.05) : random.uniform(0.85, 1.25);
   const double u = random.uniform();
   look.top = rain && u < 0.5 ? Look::Top::Coat
@@ -514,12 +537,18 @@ Look random_look(Random& random, bool child, bool rain) {
                 : v < 0.85                ? Look::Bottom::Trousers
                                           : Look::Bottom::Shorts;
   const double w = random.uniform();
-  look.hair = look.female ? (w < 0.3 ? Look::Hair::Long : w < 0.6 ? Look::Hair::Bob
-                             : w < 0.85 ? Look::Hair::Ponytail : Look::Hair::Short)
-                          : (w < 0.65 ? Look::Hair::Short : w < 0.8 ? Look::Hair::Bald
-                             : w < 0.92 ? Look::Hair::Cap : Look::Hair::Bob);
+  look.hair = look.female ? (w < 0.3    ? Look::Hair::Long
+                             : w < 0.6  ? Look::Hair::Bob
+                             : w < 0.85 ? Look::Hair::Ponytail
+                                        : Look::Hair::Short)
+                          : (w < 0.65   ? Look::Hair::Short
+                             : w < 0.8  ? Look::Hair::Bald
+                             : w < 0.92 ? Look::Hair::Cap
+                                        : Look::Hair::Bob);
   const double b = random.uniform();
-  look.bag = b < 0.2 ? Look::Bag::Backpack : b < 0.35 && !child ? Look::Bag::Shoulder : Look::Bag::None;
+  look.bag = b < 0.2              ? Look::Bag::Backpack
+             : b < 0.35 && !child ? Look::Bag::Shoulder
+                                  : Look::Bag::None;
   look.umbrella = rain && !child && random.chance(0.6);
   return look;
 }
@@ -546,8 +575,8 @@ std::vector<Pose> forward_kinematics(const Skeleton& skeleton,
     const Pose about = Pose(Eigen::Translation3d(joint)) * Pose(local[std::size_t(b)]) *
                        Pose(Eigen::Translation3d(-joint));
     const int parent = skeleton.parent[std::size_t(b)];
-    bones[std::size_t(b)] = parent < 0 ? Pose(Eigen::Translation3d(root)) * about
-                                       : bones[std::size_t(parent)] * about;
+    bones[std::size_t(b)] =
+        parent < 0 ? Pose(Eigen::Translation3d(root)) * about : bones[std::size_t(parent)] * about;
   }
   return bones;
 }

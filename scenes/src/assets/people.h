@@ -34,17 +34,26 @@ enum Bone : int {
 };
 
 // Material slots of a person (Part::materials maps them to the person's own materials).
-enum PersonSlot : std::uint16_t { kSkinTone, kTop, kBottom, kShoes, kHair, kBag, kUmbrella, kEyes,
-                                  kPersonSlots };
+enum PersonSlot : std::uint16_t {
+  kSkinTone,
+  kTop,
+  kBottom,
+  kShoes,
+  kHair,
+  kBag,
+  kUmbrella,
+  kEyes,
+  kPersonSlots
+};
 
 struct Skeleton {
   std::array<V3, kBones> joints;  // rest positions (the bone's pivot)
   std::array<int, kBones> parent;
   double height = 1.75;
   double thigh = 0, shin = 0, upper_arm = 0, forearm = 0;  // lengths
-  double ankle = 0;   // height of the ankle over the sole
-  double hip_y = 0;   // half the distance between the hip joints
-  double foot = 0;    // heel to toe
+  double ankle = 0;                                        // height of the ankle over the sole
+  double hip_y = 0;  // half the distance between the hip joints
+  double foot = 0;   // heel to toe
 };
 
 struct Look {

@@ -98,7 +98,8 @@ VehicleModel motorbike(int variant) {
     tube(body, V3(0.56 * s, side * 0.09, 1.02 * s), front + V3(0, side * 0.09, 0), 0.025, kChrome);
     tube(body, V3(-0.05, side * 0.11, 0.42) * s, rear + V3(0, side * 0.1, 0), 0.022, kUnderbody);
     tube(body, grips, grips + V3(-0.05, side * 0.34, 0), 0.014, kTrim);
-    tube(body, V3(-0.12 * s, side * 0.12, 0.4 * s), V3(-0.15 * s, side * 0.24, 0.38 * s), 0.012, kChrome);
+    tube(body, V3(-0.12 * s, side * 0.12, 0.4 * s), V3(-0.15 * s, side * 0.24, 0.38 * s), 0.012,
+         kChrome);
     add_rounded_box(body, Pose(Eigen::Translation3d(grips + V3(0.02, side * 0.3, 0.16))),
                     V3(0.015, 0.05, 0.035), 0.01, C::Motorcycle, kTrim, 1);
   }

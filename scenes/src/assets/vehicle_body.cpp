@@ -15,7 +15,8 @@ using C = SemanticClass;
 constexpr double kFlankShares[] = {0, 0.03, 0.09, 0.18, 0.32, 0.5, 0.68, 0.84, 0.94, 1};
 constexpr double kGlassShares[] = {0, 0.06, 0.25, 0.5, 0.75, 0.92, 1};
 constexpr int kBottomPoints = 3, kTopPoints = 4;
-constexpr int kFlankPoints = int(std::size(kFlankShares)), kGlassPoints = int(std::size(kGlassShares));
+constexpr int kFlankPoints = int(std::size(kFlankShares)),
+              kGlassPoints = int(std::size(kGlassShares));
 constexpr int kFirstFlank = kBottomPoints, kFirstGlass = kFirstFlank + kFlankPoints,
               kFirstTop = kFirstGlass + kGlassPoints, kHalfRing = kFirstTop + kTopPoints;
 
@@ -85,8 +86,9 @@ QuadPaint shell_paint(const BodyShape& s, const BodyFrame& f, const Grid& grid, 
   const Glazing& g = s.glazing;
   const auto paint = [](Slot slot) { return QuadPaint{C::Vehicles, slot}; };
   if (j <= kFirstFlank) return paint(kUnderbody);
-  const double ends = s.axles.empty() ? s.length / 2 : std::max(std::abs(s.axles.front()),
-                                                                  std::abs(s.axles.back()));
+  const double ends = s.axles.empty()
+                          ? s.length / 2
+                          : std::max(std::abs(s.axles.front()), std::abs(s.axles.back()));
   if (j < kFirstGlass)  // the flank: black trim low down at the bumpers
     return paint(z < s.bottom(x) + s.trim_height && std::abs(x) > ends ? kTrim : kPaint);
   if (j == kFirstGlass) return paint(kPaint);  // the shoulder
@@ -205,12 +207,13 @@ void add_cabin(Mesh& mesh, const BodyShape& s, const BodyFrame& f) {
   const double floor = f.bottom(0) + 0.12, sill = f.belt(0) - 0.04;
   const double half = f.half_width(0, sill) - 0.05;
   const Paint lining{C::Vehicles, kInterior};
-  const V3 a(back, -half, floor), b(front, -half, floor), c(front, half, floor), d(back, half, floor);
+  const V3 a(back, -half, floor), b(front, -half, floor), c(front, half, floor),
+      d(back, half, floor);
   const V3 up(0, 0, sill - floor);
-  add_quad(mesh, a, d, c, b, lining);                    // floor, facing up
-  add_quad(mesh, a, b, b + up, a + up, lining);          // right lining, facing in
-  add_quad(mesh, c, d, d + up, c + up, lining);          // left lining
-  add_quad(mesh, d, a, a + up, d + up, lining);          // behind the rear seats
+  add_quad(mesh, a, d, c, b, lining);            // floor, facing up
+  add_quad(mesh, a, b, b + up, a + up, lining);  // right lining, facing in
+  add_quad(mesh, c, d, d + up, c + up, lining);  // left lining
+  add_quad(mesh, d, a, a + up, d + up, lining);  // behind the rear seats
   add_rounded_box(mesh, Pose(Eigen::Translation3d(front - 0.2, 0, sill - 0.07)),
                   V3(0.18, half, 0.08), 0.05, C::Vehicles, kInterior, 2);
   const double driver = s.left_hand_drive ? 0.37 : -0.37;
@@ -319,10 +322,18 @@ Mesh road_wheel(double radius, double width, double rim_share, int outward) {
   Mesh mesh;
   const double w = width / 2, rim = rim_share * radius, side = 0.8 * (radius - rim);
   // tyre: the inner bead, the sidewalls bulging out, the rounded tread (radius, y)
-  const std::vector<V2> tyre = {{rim, -w * 0.85}, {rim + 0.3 * side, -w},      {rim + 0.8 * side, -w * 1.02},
-          {radius - 0.03, -w * 0.96}, {radius - 0.005, -w * 0.75}, {radius, -w * 0.4},
-          {radius, w * 0.4},          {radius - 0.005, w * 0.75}, {radius - 0.03, w * 0.96},
-          {rim + 0.8 * side, w * 1.02}, {rim + 0.3 * side, w},    {rim, w * 0.85}};
+  const std::vector<V2> tyre = {{rim, -w * 0.85},
+                                {rim + 0.3 * side, -w},
+                                {rim + 0.8 * side, -w * 1.02},
+                                {radius - 0.03, -w * 0.96},
+                                {radius - 0.005, -w * 0.75},
+                                {radius, -w * 0.4},
+                                {radius, w * 0.4},
+                                {radius - 0.005, w * 0.75},
+                                {radius - 0.03, w * 0.96},
+                                {rim + 0.8 * side, w * 1.02},
+                                {rim + 0.3 * side, w},
+                                {rim, w * 0.85}};
   constexpr int kAround = 24;
   Grid grid{int(tyre.size()), kAround, true, {}};
   for (const V2& p : tyre)
@@ -337,8 +348,12 @@ Mesh road_wheel(double radius, double width, double rim_share, int outward) {
   // the rim: a dished face a little inside the outer sidewall, and the hub
   const double face = outward * w * 0.55;
   add_lathe(mesh,
-            {{0, face - outward * 0.03}, {0.15 * rim, face + outward * 0.01}, {0.5 * rim, face},
-             {rim * 1.02, face + outward * 0.02}, {rim * 1.02, -face}, {0, -face}},
+            {{0, face - outward * 0.03},
+             {0.15 * rim, face + outward * 0.01},
+             {0.5 * rim, face},
+             {rim * 1.02, face + outward * 0.02},
+             {rim * 1.02, -face},
+             {0, -face}},
             24, C::Vehicles, kRim);
   return mesh;
 }

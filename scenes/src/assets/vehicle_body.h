@@ -38,8 +38,8 @@ struct Glazing {
   double rear_front = 0, rear_back = 0;              // the rear window on the top
   double side_front = 0, side_back = 0;              // side windows between them
   std::vector<std::pair<double, double>> pillars;    // painted over the side windows
-  bool front_face = false, rear_face = false;  // upright glass on the front / rear face (bus)
-  double frame = 0.05;  // black frame round the side glass (m)
+  bool front_face = false, rear_face = false;        // upright glass on the front / rear face (bus)
+  double frame = 0.05;                               // black frame round the side glass (m)
 };
 
 // A lamp or a plate on the front or rear face (y, z of its centre, half sizes), or a door seam.
@@ -62,7 +62,7 @@ struct BodyShape {
   Curve top, belt, bottom;   // z over x
   double tumblehome = 0.12, bulge = 0.04, shoulder = 0.04;
   double roof_radius = 0.08, sill_radius = 0.08, crown = 0.03;
-  double trim_height = 0.1;  // black trim along the bottom of the flanks
+  double trim_height = 0.1;   // black trim along the bottom of the flanks
   std::vector<double> axles;  // x of the wheel centres
   double wheel_radius = 0.32, arch_clearance = 0.05;
   Glazing glazing;

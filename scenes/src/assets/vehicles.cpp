@@ -5,20 +5,25 @@
 namespace flowscape::assets {
 
 std::string family_name(Family family) {
-  static const char* const kNames[kFamilies] = {
-      "hatchback", "saloon", "estate", "suv", "pickup", "van", "city_bus", "box_truck", "lorry",
-      "motorbike", "bicycle"};
+  static const char* const kNames[kFamilies] = {"hatchback", "saloon",    "estate",   "suv",
+                                                "pickup",    "van",       "city_bus", "box_truck",
+                                                "lorry",     "motorbike", "bicycle"};
   return kNames[int(family)];
 }
 
 SemanticClass family_class(Family family) {
   switch (family) {
-    case Family::CityBus: return SemanticClass::Bus;
+    case Family::CityBus:
+      return SemanticClass::Bus;
     case Family::BoxTruck:
-    case Family::Lorry: return SemanticClass::Truck;
-    case Family::Motorbike: return SemanticClass::Motorcycle;
-    case Family::Bicycle: return SemanticClass::Bicycle;
-    default: return SemanticClass::Car;
+    case Family::Lorry:
+      return SemanticClass::Truck;
+    case Family::Motorbike:
+      return SemanticClass::Motorcycle;
+    case Family::Bicycle:
+      return SemanticClass::Bicycle;
+    default:
+      return SemanticClass::Car;
   }
 }
 
@@ -65,10 +70,13 @@ VehicleModel family_model(Family family, int variant, bool mirrors) {
   switch (family) {
     case Family::CityBus:
     case Family::BoxTruck:
-    case Family::Lorry: return heavy_family(family, variant);
+    case Family::Lorry:
+      return heavy_family(family, variant);
     case Family::Motorbike:
-    case Family::Bicycle: return two_wheeler_family(family, variant);
-    default: return car_family(family, variant, mirrors);
+    case Family::Bicycle:
+      return two_wheeler_family(family, variant);
+    default:
+      return car_family(family, variant, mirrors);
   }
 }
 
@@ -86,8 +94,8 @@ Mesh livery_roof(Livery livery) {
   Mesh mesh;
   using C = SemanticClass;
   if (livery == Livery::Taxi) {
-    add_rounded_box(mesh, Pose(Eigen::Translation3d(0, 0, 0.09)), V3(0.12, 0.3, 0.08), 0.03,
-                    C::Car, kLivery, 2);
+    add_rounded_box(mesh, Pose(Eigen::Translation3d(0, 0, 0.09)), V3(0.12, 0.3, 0.08), 0.03, C::Car,
+                    kLivery, 2);
   } else if (livery == Livery::Police) {
     add_rounded_box(mesh, Pose(Eigen::Translation3d(0, 0, 0.06)), V3(0.14, 0.55, 0.05), 0.03,
                     C::Car, kTrim, 2);

@@ -33,10 +33,10 @@ SemanticClass family_class(Family family);  // the fine class (Car, Truck, Bus, 
 enum class Livery : std::uint8_t { Plain, Taxi, Police, Delivery };
 
 struct WheelMount {
-  V3 hub;         // in the vehicle's frame (the trailer's for trailer wheels)
-  bool steers;    // turns with the steering
-  bool trailer;   // on the semi-trailer
-  int mesh;       // index into VehicleModel::wheels
+  V3 hub;        // in the vehicle's frame (the trailer's for trailer wheels)
+  bool steers;   // turns with the steering
+  bool trailer;  // on the semi-trailer
+  int mesh;      // index into VehicleModel::wheels
 };
 
 // A built vehicle: its meshes and where its moving parts go.
@@ -69,7 +69,8 @@ struct VehicleModel {
 
 // `mirrors`: false leaves a car's wing mirrors off (an ego vehicle with cameras where they are).
 VehicleModel build_vehicle(Family family, int variant, bool mirrors = true);
-// A livery's extra geometry on the roof (taxi sign, police light bar), in slots; empty mesh for none.
+// A livery's extra geometry on the roof (taxi sign, police light bar), in slots; empty mesh for
+// none.
 Mesh livery_roof(Livery livery);
 
 }  // namespace flowscape::assets

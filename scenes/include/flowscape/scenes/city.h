@@ -46,8 +46,8 @@ inline constexpr int kEgoTries = 24;
 inline constexpr double kEgoClearAhead = 40;  // metres
 inline constexpr double kEgoTurnDegrees = 45, kEgoSpeedShare = 0.5;
 
-// A model of an opt-in asset pack (Debian's game data): a file assimp reads, the kind it stands for,
-// where it is from and its licence, which travels with the images that show it.
+// A model of an opt-in asset pack (Debian's game data): a file assimp reads, the kind it stands
+// for, where it is from and its licence, which travels with the images that show it.
 struct PackModel {
   std::string pack, name, path;
   ActorKind kind;

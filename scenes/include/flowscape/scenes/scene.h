@@ -43,9 +43,9 @@ enum class SemanticClass : std::uint8_t {
   Dynamic = 20,
   Water = 21,
   Terrain = 22,
-  Rider = 23,       // a person on a bicycle or a motorbike
-  Car = 24,         // cars, vans, pickups
-  Truck = 25,       // box trucks, lorries
+  Rider = 23,  // a person on a bicycle or a motorbike
+  Car = 24,    // cars, vans, pickups
+  Truck = 25,  // box trucks, lorries
   Bus = 26,
   Motorcycle = 27,
   Bicycle = 28,
@@ -142,7 +142,8 @@ struct Part {
   // pixel at every time, so its flow is exactly zero there.
   bool on_rig = false;
 };
-inline Part rigid_part(Mesh mesh, PoseTrack pose = [](double) { return Pose::Identity(); }) {
+inline Part rigid_part(
+    Mesh mesh, PoseTrack pose = [](double) { return Pose::Identity(); }) {
   return {std::make_shared<const Mesh>(std::move(mesh)), std::move(pose)};
 }
 

@@ -14,7 +14,7 @@ namespace flowscape {
 std::vector<std::string> showcase_models();
 
 struct Showcase {
-  Scene scene;                   // the model is actor 0 (instance 1), a rider actor 1
+  Scene scene;                    // the model is actor 0 (instance 1), a rider actor 1
   double length = 0, height = 0;  // of the model's box at time 0
 };
 // The model `name` (variant 0-2) at the origin facing +x: vehicles standing, people walking past

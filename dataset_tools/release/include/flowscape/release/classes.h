@@ -22,8 +22,8 @@ inline constexpr int kSceneClassCount = 30;  // scene.h's SemanticClass ids 0..2
 
 struct ClassTable {
   std::string name;
-  std::vector<std::string> names;                    // by id
-  std::vector<std::array<std::uint8_t, 3>> colours;  // by id: the palette CARLA draws it in
+  std::vector<std::string> names;                         // by id
+  std::vector<std::array<std::uint8_t, 3>> colours;       // by id: the palette CARLA draws it in
   std::array<std::uint8_t, kSceneClassCount> of_scene{};  // scene class -> id
   int sky = 13;
   int size() const { return int(names.size()); }

@@ -12,8 +12,8 @@
 namespace flowscape {
 
 struct GalleryOptions {
-  int height = 192;  // of each tile (width 4/3 of it)
-  ReleaseConfig color;  // spp, indirect_spp, denoise
+  int height = 192;                 // of each tile (width 4/3 of it)
+  ReleaseConfig color;              // spp, indirect_spp, denoise
   std::vector<std::string> models;  // empty: every built-in model
   int variant = 0;
 };
