@@ -3,7 +3,8 @@ scratch folder holding links to build/, python/ and scripts/. Adaptations, so CI
 two commands of the first block are what CI itself runs (so only its `gen_flowscape --demo` part
 runs here); a release command without --demo runs as written with --check (options validated, the
 plan printed), then with its sizes swapped for a tiny release (1 map, 6 sequences, 3 frames, 16 x 32)
-so the commands after it have a dataset; Slurm is tested by slurm_test.sh; the folders the README
+so the commands after it have a dataset; city_preview runs with few actors, small images and one
+sample per pixel; Slurm is tested by slurm_test.sh; the folders the README
 names by example (CUBE, frames/, flows/) are made from that dataset; `python3` is Debian's (/usr/bin first on the
 PATH, as on a fresh machine). Usage: readme_test.py REPO_ROOT BUILD_DIR"""
 import glob
@@ -20,6 +21,8 @@ SIZE_OPTIONS = {"--maps", "--frames", "--resolution", "--face-size", "--spp", "-
                 "--indirect-spp"}
 TINY = ["--maps", "1", "--sequences-per-map", "6", "--frames", "3", "--resolution", "16",
         "--face-size", "8", "--spp", "1", "--vehicles", "4", "--pedestrians", "2"]
+PREVIEW_OPTIONS = {"--height", "--spp", "--vehicles", "--pedestrians"}
+TINY_PREVIEW = ["--height", "32", "--spp", "1", "--vehicles", "8", "--pedestrians", "4"]
 
 
 def readme_commands():
@@ -31,16 +34,16 @@ def readme_commands():
                 yield line
 
 
-def tiny(words):
+def tiny(words, options=SIZE_OPTIONS, sizes=TINY):
     out, skip = [], False
     for word in words:
         if skip:
             skip = False
-        elif word in SIZE_OPTIONS:
+        elif word in options:
             skip = True
         else:
             out.append(word)
-    return out + TINY
+    return out + sizes
 
 
 def make_example_inputs(scratch):
@@ -78,6 +81,8 @@ def main():
                     continue
                 if program == "gen_flowscape" and "--demo" not in words:
                     runs += [words + ["--check"], tiny(words)]
+                elif program == "city_preview":
+                    runs.append(tiny(words, PREVIEW_OPTIONS, TINY_PREVIEW))
                 else:
                     runs.append(words)
             for words in runs:
