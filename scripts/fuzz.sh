@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz with clang (-O1 -gline-tables-only, as OSS-Fuzz does:
 # a cold build takes 7.4 min on 2 cores against 8.6 at -O2 -g), AddressSanitizer and
-# UndefinedBehaviorSanitizer in build-fuzz/, then runs each on one core for SECONDS (default 10) over its seed corpus
-# (tests/fuzz/corpus/<target>; what it learns goes to build-fuzz/corpus/<target>), and prints
-# executions and coverage. A crash, leak, UB, timeout or memory blow-up fails with the input saved
-# in build-fuzz/findings/. Everything it writes stays under build-fuzz/ (or $FLOWSCAPE_FUZZ_BUILD).
+# UndefinedBehaviorSanitizer in build-fuzz/, then runs each on one core for SECONDS (default 10)
+# over its seed corpus (tests/fuzz/corpus/<target>; what it learns goes to
+# build-fuzz/corpus/<target>), and prints executions and coverage. A crash, leak, UB, timeout or
+# memory blow-up fails with the input saved in build-fuzz/findings/. Everything it writes stays
+# under build-fuzz/ (or $FLOWSCAPE_FUZZ_BUILD).
 #   scripts/fuzz.sh                 every target, 10 s each (what the test suite runs)
 #   scripts/fuzz.sh 600 flo exr     the 10-minute runs of chosen targets
 set -euo pipefail
