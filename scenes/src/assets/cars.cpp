@@ -30,9 +30,8 @@ void car_faces(BodyShape& s, double lamp_z, double tail_z, double grille_z, doub
   s.rear.push_back({0, plate_z + 0.1, 0.26, 0.055, kPlate});
 }
 
-BodyShape car_shape(const Proportions& p, const std::vector<V2>& top,
-                    const std::vector<V2>& belt, double clearance, double front_overhang,
-                    double rear_overhang) {
+BodyShape car_shape(const Proportions& p, const std::vector<V2>& top, const std::vector<V2>& belt,
+                    double clearance, double front_overhang, double rear_overhang) {
   BodyShape s;
   s.length = p.length, s.width = p.width;
   const double a = p.length / 2;
