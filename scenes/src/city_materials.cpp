@@ -479,6 +479,14 @@ Material hair(std::uint64_t seed) {
   return m;
 }
 
+Rgb cargo_box_colour(std::uint64_t seed) {
+  Random random(mix_bits(seed ^ 0x636172676full));  // "cargo"
+  const double u = random.uniform();
+  if (u < 0.55) return varied(random, {0.8f, 0.8f, 0.78f}, 0.04);
+  if (u < 0.75) return varied(random, {0.55f, 0.56f, 0.57f}, 0.05);
+  return popular_car_colour(random.bits());
+}
+
 Rgb popular_car_colour(std::uint64_t seed) {
   Random random(mix_bits(seed ^ 0x636f6c6f7572ull));  // "colour"
   // white, black, grey, silver, blue, red, green, beige, orange

@@ -49,6 +49,8 @@ Material hair(std::uint64_t seed);
 // The detailed vehicles and people (assets/): body paint in today's popular colours with road
 // grime low down, liveries (a band of `band` from z0 to z1 m, police checks), shared trim.
 Rgb popular_car_colour(std::uint64_t seed);
+// A truck's cargo box: white on most (55 %), silver on some (20 %), else a car paint's colour.
+Rgb cargo_box_colour(std::uint64_t seed);
 Material body_paint(const Rgb& colour, std::uint64_t seed);
 Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, bool checks,
                       std::uint64_t seed);

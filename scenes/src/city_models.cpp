@@ -217,7 +217,9 @@ struct ActorLibrary::Impl {
                                                 : Rgb(random.chance(0.5) ? 0.8f : second.x(),
                                                       random.chance(0.5) ? 0.8f : second.y(),
                                                       random.chance(0.5) ? 0.78f : second.z());
-    slots[kLivery] = add_material(scene, cm::body_paint(band, look + 1));
+    const bool cargo = model.family == Family::BoxTruck || model.family == Family::Lorry;
+    slots[kLivery] = add_material(
+        scene, cm::body_paint(cargo ? cm::cargo_box_colour(random.bits()) : band, look + 1));
     slots[kSkin] = interior;
     return slots;
   }

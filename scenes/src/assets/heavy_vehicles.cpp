@@ -105,6 +105,30 @@ BodyShape truck_cab(double front, double length, double height, double axle) {
   return s;
 }
 
+// A cargo box from x = back to front (kLivery) as trucks carry them: aluminium corner posts and top
+// rails, a dark bottom rail, and at the rear two doors parted by a seam, each with two lock rods.
+void cargo_box(Mesh& mesh, double back, double front, double half_width, double bottom,
+               double top) {
+  box(mesh, V3(back, -half_width, bottom), V3(front, half_width, top), kLivery, 0.04);
+  const double post = 0.035, w = half_width;
+  for (double x : {back, front})
+    for (double side : {-1.0, 1.0})
+      box(mesh, V3(x - post, side * w - post, bottom - 0.01), V3(x + post, side * w + post, top),
+          kChrome, 0.01);
+  for (double side : {-1.0, 1.0}) {
+    box(mesh, V3(back, side * w - 0.02, top - 0.1), V3(front, side * w + 0.02, top + 0.01), kChrome,
+        0.01);
+    box(mesh, V3(back, side * w - 0.025, bottom - 0.02), V3(front, side * w + 0.025, bottom + 0.16),
+        kTrim, 0.01);
+  }
+  box(mesh, V3(back - 0.015, -0.015, bottom + 0.05), V3(back + 0.01, 0.015, top - 0.05), kTrim,
+      0.005);
+  for (double y : {0.3, w - 0.3})
+    for (double side : {-1.0, 1.0})
+      box(mesh, V3(back - 0.04, side * y - 0.02, bottom + 0.1),
+          V3(back, side * y + 0.02, top - 0.1), kChrome, 0.01);
+}
+
 Mesh translated(const Mesh& mesh, double x) {
   Mesh out;
   append_mesh(out, mesh, at(x, 0, 0));
@@ -126,7 +150,7 @@ VehicleModel box_truck(int variant) {
   const BodyShape s = truck_cab(a, cab, random.uniform(2.75, 2.95), front_axle);
   Mesh body = translated(vehicle_body(s), a - cab / 2);
   const double box_top = random.uniform(3.4, 3.7);
-  box(body, V3(-a, -1.24, 1.1), V3(a - cab - 0.1, 1.24, box_top), kLivery, 0.05);
+  cargo_box(body, -a, a - cab - 0.1, 1.24, 1.1, box_top);
   box(body, V3(-a + 0.4, -0.5, 0.7), V3(a - cab + 0.2, 0.5, 1.1), kUnderbody);  // chassis
   for (double side : {-1.0, 1.0})  // side guards between the axles
     box(body, V3(rear_axle + 0.7, side * 1.17 - 0.02, 0.45),
@@ -172,7 +196,7 @@ VehicleModel lorry(int variant) {
   // the semi-trailer, in its own frame with the kingpin at the origin
   Mesh trailer;
   const double front = 1.5, back = -12.1;
-  box(trailer, V3(back, -1.27, 0.0), V3(front, 1.27, 2.8), kLivery, 0.04);
+  cargo_box(trailer, back, front, 1.27, 0.0, 2.8);
   box(trailer, V3(back + 0.3, -0.55, -0.35), V3(front - 0.3, 0.55, 0.0), kUnderbody);
   for (double side : {-1.0, 1.0}) {
     box(trailer, V3(-1.2, side * 0.9 - 0.06, -1.05), V3(-1.05, side * 0.9 + 0.06, -0.35), kTrim);
