@@ -191,8 +191,8 @@ std::string licence_text(const ReleaseConfig& c) {
         "share-alike).\n\n| model | licence | copyright | file |\n| --- | --- | --- | --- |\n";
   for (const std::string& pack : c.asset_packs)
     for (const PackModel& m : asset_pack(pack))
-      md << "| " << m.pack << "/" << m.name << " | " << m.licence << " | " << m.copyright << " | `"
-         << m.path << "` |\n";
+      md << "| " << model_id(m) << " | " << m.licence << " | " << m.copyright << " | `" << m.path
+         << "` |\n";
   return md.str();
 }
 

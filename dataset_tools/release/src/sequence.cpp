@@ -222,7 +222,7 @@ void add_box_pose(nlohmann::json& columns, const Pose& pose, const std::string& 
 std::string pack_licence(const CityConfig& city, const std::string& model) {
   for (const std::string& pack : city.asset_packs)
     for (const PackModel& m : asset_pack(pack))
-      if (m.pack + "/" + m.name == model) return m.licence;
+      if (model_id(m) == model) return m.licence;
   return "";
 }
 

@@ -64,6 +64,8 @@ struct PackModel {
 // naming the Debian package when it is not installed.
 std::vector<PackModel> asset_pack(const std::string& name);
 std::vector<std::string> asset_pack_names();
+// How records name a pack's model: "pack/name" ("torcs/p406").
+std::string model_id(const PackModel& model);
 
 struct CityConfig {
   int map = 0;  // 0 .. kMapCount - 1
