@@ -29,7 +29,8 @@ struct Options {
   std::uint64_t seed = 0;
   double time = 1.0;
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
-  std::vector<std::string> weathers;  // when given: one row per weather, of the first map
+  std::vector<std::string> weathers;      // when given: one row per weather, of the first map
+  std::vector<std::string> times_of_day;  // when given: one row per weather and time of day
   std::map<std::string, std::string> models;
   std::vector<std::string> rigs;  // when given: one row per camera of each rig, of the first map
   bool plan = false;              // seen from above instead of from the ego
@@ -67,13 +68,35 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   return {linear_to_srgb8(color.view()), semantic_to_color(gt.semantic.view())};
 }
 
-// One row of the sheet: colour | flow | semantics of map `map` in a weather preset, at the frame
-// nearest the options' time.
-std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather) {
+struct Row {
+  int map;
+  std::string weather, time_of_day;
+};
+
+// One row per map (sunny, by day), or per weather and time of day of the first map.
+std::vector<Row> planned_rows(const Options& o) {
+  std::vector<Row> rows;
+  if (o.weathers.empty() && o.times_of_day.empty()) {
+    for (int map : o.maps) rows.push_back({map, "sunny", "day"});
+    return rows;
+  }
+  for (const std::string& weather :
+       o.weathers.empty() ? std::vector<std::string>{"sunny"} : o.weathers)
+    for (const std::string& time :
+         o.times_of_day.empty() ? std::vector<std::string>{"day"} : o.times_of_day)
+      rows.push_back({o.maps[0], weather, time});
+  return rows;
+}
+
+// One row of the sheet: colour | flow | semantics of map `map` in a weather preset at a time of
+// day, at the frame nearest the options' time.
+std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather,
+                                            const std::string& time_of_day = "day") {
   const int frame = int(std::lround(o.time * kFrameRate));
   SequenceSpec spec{map,         weather,        o.seed,    o.vehicles, o.pedestrians,
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, o.color);
+  spec.time_of_day = time_of_day;
   const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
@@ -82,8 +105,9 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
   const Image<float> color = release_color(o.color, sequence, renderer, erp, frame, gt);
   Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
   cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
-  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
-              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather + " " + time_of_day,
+              cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1,
+              cv::LINE_AA);
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);
@@ -160,6 +184,9 @@ int main(int argc, char** argv) {
   app.add_option("--weathers", o.weathers,
                  "one row per weather preset (sunny cloud fog rain wet wet_cloudy soft_rain "
                  "hard_rain clear_sunset foggy_rain) of the first map; default: sunny");
+  app.add_option("--times-of-day", o.times_of_day,
+                 "with or without --weathers: one row per weather and time of day (day, dawn, "
+                 "dusk, night or a sun elevation in degrees) of the first map");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
@@ -191,6 +218,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
+    for (const std::string& time : o.times_of_day) validate_time_of_day(time);
     o.models = parse_models(models);
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
     if (o.actors) {
@@ -205,19 +233,17 @@ int main(int argc, char** argv) {
       std::printf("rig %s: %zu camera(s)\n", rig.c_str(), rows.size());
       std::fflush(stdout);
     }
-    const std::size_t rows = !o.rigs.empty()      ? 0
-                             : o.weathers.empty() ? o.maps.size()
-                                                  : o.weathers.size();
-    for (std::size_t row = 0; row < rows; ++row) {
+    const std::vector<Row> rows = o.rigs.empty() ? planned_rows(o) : std::vector<Row>{};
+    for (std::size_t row = 0; row < rows.size(); ++row) {
       const auto start = std::chrono::steady_clock::now();
-      const int map = o.weathers.empty() ? o.maps[row] : o.maps[0];
-      const std::string weather = o.weathers.empty() ? "sunny" : o.weathers[row];
-      sheet.push_back(o.plan ? render_plan(o, map) : render_row(o, map, weather));
-      label_tile(sheet.back().front(), map_name(map) + (o.plan ? ", from above" : ", " + weather));
+      const auto& [map, weather, time] = rows[row];
+      sheet.push_back(o.plan ? render_plan(o, map) : render_row(o, map, weather, time));
+      const std::string look = time == "day" ? weather : weather + " at " + time;
+      label_tile(sheet.back().front(), map_name(map) + (o.plan ? ", from above" : ", " + look));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows, map_name(map).c_str(),
-                  weather.c_str(), seconds);
+      std::printf("row %zu/%zu (%s %s) in %.1f s\n", row + 1, rows.size(), map_name(map).c_str(),
+                  look.c_str(), seconds);
       std::fflush(stdout);
     }
     write_image(o.out, contact_sheet(sheet));

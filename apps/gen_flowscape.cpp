@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   const ReleaseConfig defaults;  // the paper's FlowScape
   ConfigSources sources;
   nlohmann::json& given = sources.command_line;
-  std::string out = "dataset", config_file, shard, weathers;
+  std::string out = "dataset", config_file, shard, weathers, times;
   int threads = 0;
   const auto option = [&](const char* flags, const char* key, auto default_value,
                           const char* help) {
@@ -96,6 +96,10 @@ int main(int argc, char** argv) {
   app.add_option("--weather", weathers,
                  "comma-separated weather presets cycled over each map's sequences (default "
                  "sunny x5,cloud,fog,rain)");
+  app.add_option(
+      "--time-of-day", times,
+      "comma-separated times of day cycled over the release's sequences: day, dawn, "
+      "dusk, night or a sun elevation in degrees (-90..90; default day x3,dawn,dusk,night)");
   option("--vehicles", "vehicles", defaults.vehicles, "vehicles per map");
   option("--pedestrians", "pedestrians", defaults.pedestrians, "pedestrians per map");
   option("--turn-share", "turn_share", defaults.turn_share,
@@ -159,6 +163,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
+    if (!times.empty()) given["times_of_day"] = comma_list(times);
     if (!outputs.empty())
       given["outputs"] = outputs == "none" ? std::vector<std::string>{} : comma_list(outputs);
     if (!gaps.empty()) given["flow_gaps"] = parse_gaps(gaps);

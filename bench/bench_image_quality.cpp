@@ -5,7 +5,9 @@
 // denoising; the ground truth, needed by all, not counted). Rows: the raw path tracer at 16 spp
 // (the baseline), the a-trous default of before, OIDN's U-Net (default and small) at several
 // sample counts, and the release's default (ReleaseConfig). Targets at the default: PSNR >= 40 dB
-// in every weather, at most half the baseline's time.
+// in every weather, at most half the baseline's time. Then the release default per time of day
+// (day, dusk, night; sunny): the relative MSE of linear non-sky colour against the reference at the
+// sequence's exposure, and the seconds per frame (target: night within 1.5x of day).
 // Usage: bench_image_quality [ERP height = 128] [reference spp = 1024] [threads = all]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -42,6 +44,40 @@ double psnr(const Image<float>& image, const Image<float>& reference, const Grou
   }
   return 10 * std::log10(255.0 * 255.0 / std::max(squared / count, 1e-12));
 }
+
+// Relative MSE of linear colour over the non-sky pixels: sum (c - r)^2 / sum r^2, comparable
+// across exposures and times of day.
+double relative_mse(const Image<float>& image, const Image<float>& reference,
+                    const GroundTruth& truth) {
+  double error = 0, energy = 0;
+  for (std::size_t i = 0; i < truth.semantic.data.size(); ++i) {
+    if (truth.semantic.data[i] == std::uint8_t(SemanticClass::Sky)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double r = reference.data[3 * i + c], d = image.data[3 * i + c] - r;
+      error += d * d, energy += r * r;
+    }
+  }
+  return error / std::max(energy, 1e-30);
+}
+
+// One frame of a sequence with its ground truth and converged reference colour.
+struct Setup {
+  Setup(const SequenceSpec& spec, int frame, int height, int reference_spp)
+      : sequence(make_sequence(spec)),
+        renderer(sequence.city.scene),
+        pair(sequence.frame_pair(frame)),
+        erp(Projection::equirectangular(height)),
+        truth(renderer.ground_truth(erp, pair)),
+        reference(renderer.color(
+            erp, pair,
+            {reference_spp, ReleaseConfig{}.max_bounces, sequence.color_seed(frame) + 1})) {}
+  Sequence sequence;
+  Renderer renderer;
+  FramePair pair;
+  Projection erp;
+  GroundTruth truth;
+  Image<float> reference;
+};
 
 struct Variant {
   std::string name;
@@ -81,22 +117,17 @@ int main(int argc, char** argv) {
   std::map<std::string, double> worst, seconds;
   std::printf("  %-30s %8s %8s %8s %8s %9s\n", "", "sunny", "cloud", "fog", "rain", "s/frame");
   std::vector<std::vector<double>> table(variants.size());
+  SequenceSpec spec = sequence_spec(defaults, plan);
+  spec.ego_route = EgoRoute::Free;  // the frame its figures were of
   for (const char* weather : {"sunny", "cloud", "fog", "rain"}) {
-    SequenceSpec spec = sequence_spec(defaults, plan);
-    spec.weather = weather, spec.ego_route = EgoRoute::Free;  // the frame its figures were of
-    const Sequence sequence = make_sequence(spec);
-    Renderer renderer(sequence.city.scene);
-    const FramePair pair = sequence.frame_pair(frame);
-    const Projection erp = Projection::equirectangular(height);
-    const GroundTruth truth = renderer.ground_truth(erp, pair);
-    const Image<float> reference = renderer.color(
-        erp, pair, {reference_spp, defaults.max_bounces, sequence.color_seed(frame) + 1});
+    spec.weather = weather;
+    Setup s(spec, frame, height, reference_spp);
     for (std::size_t k = 0; k < variants.size(); ++k) {
       const auto start = std::chrono::steady_clock::now();
       const Image<float> color =
-          release_color(variants[k].config, sequence, renderer, erp, frame, truth);
+          release_color(variants[k].config, s.sequence, s.renderer, s.erp, frame, s.truth);
       seconds[variants[k].name] += seconds_since(start) / 4;
-      table[k].push_back(psnr(color, reference, truth));
+      table[k].push_back(psnr(color, s.reference, s.truth));
     }
   }
   const double baseline = seconds[variants[0].name];
@@ -113,5 +144,22 @@ int main(int argc, char** argv) {
       defaults.spp, indirect_samples(defaults), defaults.denoise.c_str(),
       defaults.denoise == "oidn" ? defaults.denoise_model.c_str() : "",
       *std::min_element(d.begin(), d.end()), seconds["release default"] / baseline);
+  // the release default per time of day (sunny): noise at the sequence's exposure and cost
+  std::printf("\n  %-30s %12s %9s %12s %10s\n", "release default, sunny", "rel. MSE", "s/frame",
+              "MSE / day's", "s / day's");
+  double day_mse = 0, day_seconds = 0;
+  spec.weather = "sunny";
+  for (const char* time : {"day", "dusk", "night"}) {
+    spec.time_of_day = time;
+    Setup s(spec, frame, height, reference_spp);
+    const auto start = std::chrono::steady_clock::now();
+    const Image<float> color =
+        release_color(defaults, s.sequence, s.renderer, s.erp, frame, s.truth);
+    const double took = seconds_since(start), mse = relative_mse(color, s.reference, s.truth);
+    if (day_mse == 0) day_mse = mse, day_seconds = took;
+    std::printf("  %-30s %12.3g %9.3f %11.2fx %9.2fx\n", time, mse, took, mse / day_mse,
+                took / day_seconds);
+  }
+  std::printf("  target: night within 1.5x of day's relative MSE at equal time\n");
   return 0;
 }

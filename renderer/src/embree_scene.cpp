@@ -118,7 +118,7 @@ void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& pack
     const Vec3 &o = rays[i].origin, &d = rays[i].direction;
     packet.org_x[i] = float(o.x()), packet.org_y[i] = float(o.y()), packet.org_z[i] = float(o.z());
     packet.dir_x[i] = float(d.x()), packet.dir_y[i] = float(d.y()), packet.dir_z[i] = float(d.z());
-    packet.tnear[i] = 0, packet.tfar[i] = kInfinity, packet.mask[i] = mask;
+    packet.tnear[i] = 0, packet.tfar[i] = rays[i].far, packet.mask[i] = mask;
     packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
   }
 }

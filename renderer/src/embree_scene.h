@@ -38,6 +38,7 @@ constexpr unsigned kSceneMask = 1, kColorOnlyMask = 2, kSunMask = 4;
 struct BundleRay {
   Vec3 origin = Vec3::Zero(), direction = Vec3::UnitX();  // unit direction
   bool active = false;
+  float far = std::numeric_limits<float>::infinity();  // how far it looks
 };
 constexpr int kBundleSize = 16;  // Embree's widest packet
 

@@ -1,24 +1,150 @@
 #include "lights.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "sampling.h"
 
 namespace flowscape {
-Lights::Lights(const Environment& e)
-    : environment(e),
-      sun_frame(frame_around(e.sun_direction)),
-      sun_cos_radius(std::cos(e.sun_angular_radius)),
-      sun_irradiance(e.sun_irradiance.cast<double>()),
-      sun_disc_radiance(sun_irradiance * e.sun_disc_visibility / (2 * kPi * (1 - sun_cos_radius))),
-      // the sky dome's radiance averaged over the sphere: above the horizon (1 - t) horizon +
-      // t zenith with t = sqrt(z), whose mean over z in [0, 1] is 2/3; below it the ground's
-      sky_mean(((e.sky_horizon / 3 + 2 * e.sky_zenith / 3 + e.ground) / 2).cast<double>()) {}
+namespace {
+
+constexpr double kLampCell = 16;  // metres
+// A lamp lights points within 80 m that it gives more than 1e-6 (sky units before the exposure:
+// under 1 % of a street lamp's light beneath it)
+constexpr double kLampFloor = 1e-6, kLampReach = 80;
+constexpr std::size_t kMaxLampCells = 1 << 22;
+
+double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+}  // namespace
+
+LampLights::LampLights(const Scene& scene, double time) {
+  const double level = scene.environment.lamp_level;
+  if (!(level > 0) || scene.lamps.empty()) return;
+  Eigen::AlignedBox2d bounds;
+  for (const Lamp& lamp : scene.lamps) {
+    const Pose pose = lamp.actor < 0 ? Pose::Identity() : scene.actors[lamp.actor].pose(time);
+    const Rgb intensity = lamp.intensity.cast<double>() * level;
+    const double brightest = luminance(intensity);
+    if (!(brightest > 0)) continue;
+    lamps_.push_back({pose * lamp.position, (pose.linear() * lamp.axis).normalized(),
+                      lamp.cos_inner, lamp.cos_outer, intensity,
+                      std::min(kLampReach, std::sqrt(brightest / (kLampFloor * level)))});
+    bounds.extend(lamps_.back().position.head<2>());
+  }
+  if (lamps_.empty()) return;
+  double reach = 0;
+  for (const Posed& lamp : lamps_) reach = std::max(reach, lamp.reach);
+  origin_ = bounds.min() - Vec2::Constant(reach);
+  const Vec2 size = bounds.sizes() + Vec2::Constant(2 * reach);
+  columns_ = int(std::ceil(size.x() / kLampCell)) + 1,
+  rows_ = int(std::ceil(size.y() / kLampCell)) + 1;
+  if (std::size_t(columns_) * rows_ > kMaxLampCells)
+    throw std::invalid_argument("scene lamps: spread over more than " +
+                                std::to_string(kMaxLampCells) + " cells of 16 m");
+  cells_.resize(std::size_t(columns_) * rows_);
+  float lowest = std::numeric_limits<float>::infinity();  // the world's lowest point
+  for (const Eigen::Vector3f& v : scene.world.vertices) lowest = std::min(lowest, v.z());
+  for (int k = 0; k < int(lamps_.size()); ++k) {
+    const Posed& lamp = lamps_[k];
+    const Vec2 lo = (lamp.position.head<2>() - origin_ - Vec2::Constant(lamp.reach)) / kLampCell;
+    const Vec2 hi = (lamp.position.head<2>() - origin_ + Vec2::Constant(lamp.reach)) / kLampCell;
+    for (int r = std::max(0, int(lo.y())); r <= std::min(rows_ - 1, int(hi.y())); ++r)
+      for (int c = std::max(0, int(lo.x())); c <= std::min(columns_ - 1, int(hi.x())); ++c)
+        if (may_light(lamp, origin_ + kLampCell * Vec2(c, r), std::min(double(lowest), 0.0)))
+          cells_[std::size_t(r) * columns_ + c].push_back(k);
+  }
+}
+
+// Whether a lamp's beam may reach the column over a cell (conservative): within its reach; a beam
+// tilted down so far that it never meets the horizon reaches (height above the world's lowest
+// point) x tan(its steepest angle from the vertical) sideways; any other beam stays within a wedge
+// of azimuths about its axis.
+bool LampLights::may_light(const Posed& lamp, const Vec2& cell_lo, double lowest) const {
+  const Vec2 centre = cell_lo + Vec2::Constant(kLampCell / 2);
+  const double radius = kLampCell / std::sqrt(2.0);
+  const Vec2 to_cell = centre - lamp.position.head<2>();
+  const double distance = to_cell.norm();
+  if (distance - radius > lamp.reach) return false;
+  if (lamp.cos_outer <= -1 || distance <= radius) return true;
+  const double outer = std::acos(lamp.cos_outer),
+               below = std::acos(std::clamp(-lamp.axis.z(), -1.0, 1.0));
+  if (below + outer < kPi / 2 - 1e-6)
+    return distance - radius <= (lamp.position.z() - lowest) * std::tan(below + outer);
+  const double elevation = std::asin(std::clamp(lamp.axis.z(), -1.0, 1.0));
+  if (outer + std::abs(elevation) >= kPi / 2 - 1e-6 || lamp.axis.head<2>().norm() < 1e-9)
+    return true;
+  const double half_wedge = std::asin(std::min(1.0, std::sin(outer) / std::cos(elevation)));
+  const double off_axis = std::acos(std::clamp(
+      to_cell.dot(lamp.axis.head<2>()) / (distance * lamp.axis.head<2>().norm()), -1.0, 1.0));
+  return off_axis - std::asin(radius / distance) <= half_wedge;
+}
+
+// pbrt-v4's spot light: a smooth step in the cosine between the beam's edges.
+double LampLights::beam(const Posed& lamp, const Vec3& from_lamp) const {
+  if (lamp.cos_outer <= -1) return 1;
+  const double c = lamp.axis.dot(from_lamp);
+  if (c <= lamp.cos_outer) return 0;
+  if (c >= lamp.cos_inner) return 1;
+  const double t = (c - lamp.cos_outer) / (lamp.cos_inner - lamp.cos_outer);
+  return t * t * (3 - 2 * t);
+}
+
+const std::vector<int>* LampLights::cell_of(const Vec3& point) const {
+  const Vec2 at = (point.head<2>() - origin_) / kLampCell;
+  if (!(at.x() >= 0 && at.y() >= 0 && at.x() < columns_ && at.y() < rows_)) return nullptr;
+  return &cells_[std::size_t(int(at.y())) * columns_ + int(at.x())];
+}
+
+LampLights::Sample LampLights::sample(const Vec3& point, const Vec3& normal, double u) const {
+  const std::vector<int>* cell = empty() ? nullptr : cell_of(point);
+  if (!cell || cell->empty()) return {};
+  constexpr int kMax = 256;  // weights of the cell's first 256 lamps (cells hold far fewer)
+  double weights[kMax], total = 0;
+  const int n = std::min(int(cell->size()), kMax);
+  for (int k = 0; k < n; ++k) {
+    const Posed& lamp = lamps_[(*cell)[k]];
+    const Vec3 to_point = point - lamp.position;
+    const double d2 = std::max(to_point.squaredNorm(), 1e-4), d = std::sqrt(d2);
+    const double facing = std::max(0.0, -normal.dot(to_point) / d);
+    weights[k] = luminance(lamp.intensity) * beam(lamp, to_point / d) * facing / d2;
+    total += weights[k];
+  }
+  if (!(total > 0)) return {};
+  int pick = 0;
+  for (double sum = weights[0]; sum <= u * total && pick < n - 1;) sum += weights[++pick];
+  const Posed& lamp = lamps_[(*cell)[pick]];
+  const Vec3 to_lamp = lamp.position - point;
+  const double d2 = std::max(to_lamp.squaredNorm(), 1e-4), distance = std::sqrt(d2);
+  const double probability = weights[pick] / total;
+  return {to_lamp / distance, distance,
+          lamp.intensity * (beam(lamp, -to_lamp / distance) / d2 / probability), total};
+}
+
+Lights::Lights(const Scene& scene, double time)
+    : environment(scene.environment),
+      lamps(scene, time),
+      sun_frame(frame_around(environment.sun_direction)),
+      sun_cos_radius(std::cos(environment.sun_angular_radius)),
+      sun_irradiance(environment.sun_irradiance.cast<double>()),
+      sun_disc_radiance(sun_irradiance * environment.sun_disc_visibility /
+                        (2 * kPi * (1 - sun_cos_radius))),
+      sky_mean(((upper_mean(environment) + environment.ground) / 2).cast<double>()) {}
+
+// The sky's radiance averaged over the upper hemisphere: the table's, or for the gradient
+// (1 - t) horizon + t zenith with t = sqrt(z), whose mean over z in [0, 1] is 2/3.
+Eigen::Vector3f Lights::upper_mean(const Environment& e) {
+  return e.sky_dome ? e.sky_dome->mean()
+                    : Eigen::Vector3f(e.sky_horizon / 3 + 2 * e.sky_zenith / 3);
+}
 
 Rgb Lights::sky_radiance(const Vec3& d) const {
   if (d.z() < 0) return environment.ground.cast<double>();
+  if (environment.sky_dome) return environment.sky_dome->at(d).cast<double>();
   const double t = std::sqrt(d.z());
   return ((1 - t) * environment.sky_horizon + t * environment.sky_zenith).cast<double>();
 }

@@ -3,6 +3,7 @@
 // computed once per frame. The fog is integrated in closed form along every ray segment
 // (transmittance and single scattering), so it adds no noise.
 #include <Eigen/Core>
+#include <vector>
 
 #include "flowscape/scenes/scene.h"
 
@@ -10,8 +11,43 @@ namespace flowscape {
 
 using Rgb = Eigen::Vector3d;
 
+// The lamps of a frame (Scene::lamps) posed at its time, and one picked for a point: a grid of
+// 16 m cells over the ground lists the lamps whose light reaches each cell above a floor; a point
+// picks one of its cell's lamps in proportion to the irradiance it would give there (intensity x
+// beam x cosine on the surface / distance^2: on a diffuse surface, the light itself), so hundreds
+// of lamps cost a handful of weights per shading point.
+class LampLights {
+ public:
+  LampLights(const Scene& scene, double time);
+  bool empty() const { return lamps_.empty(); }
+  struct Sample {
+    Vec3 direction = Vec3::Zero();  // towards the lamp (unit)
+    double distance = 0;
+    Rgb irradiance = Rgb::Zero();  // on a surface facing the lamp, over the pick's probability
+    double total = 0;  // the weights of all the point's lamps: about the lamps' irradiance there
+  };
+  // A lamp for `point` on a surface facing `normal`, picked with u in [0, 1); none (zero
+  // irradiance) where no lamp reaches.
+  Sample sample(const Vec3& point, const Vec3& normal, double u) const;
+
+ private:
+  struct Posed {
+    Vec3 position, axis;
+    double cos_inner, cos_outer;
+    Rgb intensity;
+    double reach;  // metres within which it lights a point
+  };
+  double beam(const Posed& lamp, const Vec3& from_lamp) const;
+  bool may_light(const Posed& lamp, const Vec2& cell_lo, double lowest) const;
+  const std::vector<int>* cell_of(const Vec3& point) const;
+  std::vector<Posed> lamps_;
+  Vec2 origin_ = Vec2::Zero();
+  int columns_ = 0, rows_ = 0;
+  std::vector<std::vector<int>> cells_;
+};
+
 struct Lights {
-  explicit Lights(const Environment& environment);
+  Lights(const Scene& scene, double time);
 
   Rgb sky_radiance(const Vec3& d) const;
   // Radiance of the sun disc seen along d (irradiance spread over the disc's solid angle).
@@ -27,11 +63,13 @@ struct Lights {
   Rgb inscattered(const Vec3& o, const Vec3& d, double t) const;
 
   const Environment& environment;
+  LampLights lamps;
   Mat3 sun_frame;
   double sun_cos_radius;
   Rgb sun_irradiance, sun_disc_radiance, sky_mean;
 
  private:
+  static Eigen::Vector3f upper_mean(const Environment& environment);
   double fog_extinction(double z) const;
 };
 

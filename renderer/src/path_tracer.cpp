@@ -53,7 +53,10 @@ struct PathState {
   bool sun_visible = true;
 };
 
-// Next-event estimation: a shadow ray towards the sun and the light it brings if unblocked.
+double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
+// Next-event estimation: a shadow ray towards the sun (the moon at night) or a lamp, and the light
+// it brings if unblocked.
 struct SunRay {
   BundleRay ray;
   Rgb light = Rgb::Zero();
@@ -64,6 +67,7 @@ struct SunRay {
 // through the fog.
 SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
                Vec2 u, Layer layer) {
+  if (lights.sun_irradiance.isZero()) return {};  // set below the horizon or behind clouds
   const Vec3 to_sun = lights.sun_sample(u);
   const double cos_n = to_sun.dot(s.normal);
   if (cos_n <= 0 || to_sun.dot(s.geometric) <= 0) return {};
@@ -72,6 +76,35 @@ SunRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const
       {origin, to_sun, true},
       throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) * (cos_n / kPi * fog),
       layer};
+}
+
+// Direct light from a lamp on a diffuse surface (the lamp picked for the point by LampLights).
+SunRay lamp_ray(const Lights& lights, const LampLights::Sample& lamp, const Surface& s,
+                const Vec3& origin, const Rgb& throughput, Layer layer) {
+  const double cos_n = lamp.direction.dot(s.normal);
+  if (lamp.irradiance.isZero() || cos_n <= 0 || lamp.direction.dot(s.geometric) <= 0) return {};
+  const double fog =
+      lights.foggy() ? std::exp(-lights.optical_depth(origin, lamp.direction, lamp.distance)) : 1;
+  return {{origin, lamp.direction, true, float(lamp.distance * (1 - 1e-4))},
+          throughput.cwiseProduct(s.albedo).cwiseProduct(lamp.irradiance) * (cos_n / kPi * fog),
+          layer};
+}
+
+// The sun or, once the lamps are on, a lamp (picked with u.x): the sun with the probability of its
+// share of the light on the surface (its irradiance on it against the lamps' weights), chosen with
+// u.y, which the sun's disc sample then reuses.
+SunRay light_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
+                 Vec2 u, Layer layer) {
+  if (lights.lamps.empty()) return sun_ray(lights, s, origin, throughput, u, layer);
+  const LampLights::Sample lamp = lights.lamps.sample(origin, s.normal, u.x());
+  const double sun_share = luminance(lights.sun_irradiance) *
+                           std::max(0.0, s.normal.dot(lights.environment.sun_direction));
+  const double sun_chance = sun_share / std::max(sun_share + lamp.total, 1e-300);
+  if (u.y() < sun_chance) {
+    u.y() /= sun_chance;
+    return sun_ray(lights, s, origin, throughput / sun_chance, u, layer);
+  }
+  return lamp_ray(lights, lamp, s, origin, throughput / (1 - sun_chance), layer);
 }
 
 bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the path survives
@@ -103,7 +136,7 @@ void cross_fog(const Lights& lights, double distance, PathState& path) {
 // direction.
 void scatter_diffusely(const Lights& lights, const Surface& s, const Vec3& above, Vec2 light_sample,
                        Vec2 lobe_sample, PathState& path, SunRay& sun) {
-  sun = sun_ray(lights, s, above, path.throughput, light_sample, path.layer);
+  sun = light_ray(lights, s, above, path.throughput, light_sample, path.layer);
   path.throughput = path.throughput.cwiseProduct(s.albedo);
   path.origin = above, path.dir = cosine_direction(s.normal, lobe_sample);
   path.sun_visible = false, path.spread = kScatteredSpread, path.textured = false;
@@ -151,7 +184,10 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   }
   if (first) path.normal += s.smooth;
   if (m.kind == Material::Kind::Emissive) {
-    path.light[path.layer] += throughput.cwiseProduct(m.emission.cast<double>());
+    // a lamp's glowing body: seen directly and in mirrors; its light on surfaces comes from its
+    // point source (Scene::lamps), as the sun's does
+    if (path.sun_visible || !m.lamp_body)
+      path.light[path.layer] += throughput.cwiseProduct(m.emission.cast<double>());
     return false;
   }
   const Vec3 above = s.position + offset * s.geometric, below = s.position - offset * s.geometric;
@@ -163,7 +199,7 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   // does next; half the paths then take a glossy surface's coat, half its base.
   if (first && reflects_diffusely) {
     const Rgb diffuse_part = throughput * (1 - fresnel);
-    sun = sun_ray(lights, s, above, diffuse_part, light_sample, kDirect);
+    sun = light_ray(lights, s, above, diffuse_part, light_sample, kDirect);
     path.albedo += diffuse_part.cwiseProduct(s.albedo);
   }
   bool diffuse = m.kind == Material::Kind::Diffuse, transmitted = false;
@@ -296,8 +332,6 @@ void put(Image<float>& image, int x, int y, const Rgb& value) {
   for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = float(value[c]);
 }
 
-double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
 }  // namespace
 
 ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
@@ -312,7 +346,7 @@ ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
   const Vec3 origin = frames.rig.translation();
   const Mat3 rotation = frames.rig.linear();
   std::atomic<std::uint64_t> rays{0};
-  const Lights lights(embree.scene().environment);
+  const Lights lights(embree.scene(), frames.time);
   const FrameContext frame{embree, images, lights, options.textures};
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;

@@ -504,6 +504,10 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
                             user_model_of(models, ActorKind::Pedestrian))},
         {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed});
   }
+  // the moving vehicles' head lamps (walkers and riders have none)
+  for (std::size_t a = 0; a < city.scene.actors.size(); ++a)
+    for (const Lamp& beam : library.head_lamps(city.scene.actors[a], int(a)))
+      city.scene.lamps.push_back(beam);
   for (const Pose& pose : parked) {
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
     record.parked = true;
@@ -517,6 +521,9 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
                    std::make_shared<const Track>(traffic.tracks.vehicles[0]), city.mount.height,
                    config.ego_cameras)},
       record);
+  const int ego = int(city.scene.actors.size()) - 1;
+  for (const Lamp& beam : library.head_lamps(city.scene.actors[ego], ego))
+    city.scene.lamps.push_back(beam);
 }
 
 }  // namespace

@@ -258,6 +258,12 @@ Material window_glass(std::uint64_t seed) {
               });
 }
 
+Material lit_window(std::uint64_t seed, const Rgb& glow) {
+  Material m = window_glass(seed);
+  m.night_emission = glow;
+  return m;
+}
+
 Material window_frame(std::uint64_t seed) {
   Random random(seed);
   const double pick = random.uniform();
@@ -414,9 +420,17 @@ Material vehicle_glass() {
   return m;
 }
 
-Material lamp(const Rgb& colour) {
+Material lamp(const Rgb& colour, const Rgb& night_glow) {
   Material m;
   m.kind = Material::Kind::Glossy, m.albedo = colour, m.roughness = 0.02f;
+  m.night_emission = night_glow, m.lamp_body = true;
+  return m;
+}
+
+Material street_lamp() {
+  Material m;
+  m.kind = Material::Kind::Glossy, m.albedo = {0.8f, 0.8f, 0.76f}, m.roughness = 0.3f;
+  m.night_emission = Rgb(1.0f, 0.86f, 0.68f) * 0.02f, m.lamp_body = true;
   return m;
 }
 

@@ -40,7 +40,15 @@ Material car_paint(std::uint64_t seed);
 Material tyre(double width);             // rubber, tread grooves around (the wheel's frame)
 Material wheel_rim(std::uint64_t seed);  // a metal disc with spokes on its faces
 Material vehicle_glass();
-Material lamp(const Rgb& colour);  // head and tail lights
+// Head and tail lights: glossy glass that glows with `night_glow` (sky units, before the exposure)
+// once the lamps are on.
+Material lamp(const Rgb& colour, const Rgb& night_glow = Rgb::Zero());
+Material street_lamp();
+// A window's glass lit from inside at night (`glow` in sky units before the exposure): by day the
+// same as window_glass.
+Material lit_window(
+    std::uint64_t seed,
+    const Rgb& glow);  // a street lamp's diffuser: white by day, a warm glow at night
 Material number_plate(std::uint64_t seed);
 Material clothing(std::uint64_t seed, bool trousers);
 Material skin(std::uint64_t seed);

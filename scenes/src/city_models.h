@@ -56,6 +56,8 @@ class ActorLibrary {
   // the camera when no placement leaves it clear.
   Actor ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<const Track> ego, double height,
             const std::vector<Vec3>& cameras);
+  // The beams of a vehicle's head lamps (none for a body without them), for Scene::lamps.
+  std::vector<Lamp> head_lamps(const Actor& vehicle, int actor_index) const;
 
  private:
   struct Impl;

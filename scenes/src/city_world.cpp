@@ -17,8 +17,9 @@ using Footprint = std::array<V2, 4>;
 
 struct Palette {
   std::uint16_t asphalt, white, yellow, pavement, curb, grass, dirt, concrete, water, glass, bark,
-      metal, sign, signal, timber, rail, tank;
-  std::vector<std::uint16_t> leaves;  // a few tree species
+      metal, sign, signal, timber, rail, tank, lamp, lit_shop;
+  std::vector<std::uint16_t> lit_windows;  // warm, cool and dim rooms
+  std::vector<std::uint16_t> leaves;       // a few tree species
 };
 
 Palette make_palette(Scene& scene, std::uint64_t seed, const Style& style) {
@@ -36,7 +37,8 @@ Palette make_palette(Scene& scene, std::uint64_t seed, const Style& style) {
   p.dirt = add(cm::soil(next()));
   p.concrete = add(cm::concrete(next()));
   p.water = add(cm::water());
-  p.glass = add(cm::window_glass(next()));
+  const std::uint64_t glass_seed = next();
+  p.glass = add(cm::window_glass(glass_seed));
   p.bark = add(cm::bark(next()));
   p.metal = add(cm::painted_metal(next(), {0.3f, 0.32f, 0.3f}));
   p.sign = add(cm::sign_face(next()));
@@ -45,6 +47,13 @@ Palette make_palette(Scene& scene, std::uint64_t seed, const Style& style) {
   p.rail = add(cm::painted_metal(next(), {0.4f, 0.33f, 0.27f}));
   p.tank = add(cm::painted_metal(next(), {0.75f, 0.75f, 0.72f}));
   for (int k = 0; k < 3; ++k) p.leaves.push_back(add(cm::leaves(next())));
+  p.lamp = add(cm::street_lamp());
+  const Eigen::Vector3f rooms[] = {Eigen::Vector3f(1.0f, 0.78f, 0.52f) * 4e-4f,
+                                   Eigen::Vector3f(0.85f, 0.92f, 1.0f) * 3e-4f,
+                                   Eigen::Vector3f(1.0f, 0.7f, 0.4f) * 1.5e-4f};
+  for (const Eigen::Vector3f& glow : rooms)
+    p.lit_windows.push_back(add(cm::lit_window(glass_seed, glow)));
+  p.lit_shop = add(cm::lit_window(glass_seed, Eigen::Vector3f(1.0f, 0.9f, 0.75f) * 1.2e-3f));
   return p;
 }
 
@@ -370,7 +379,13 @@ class WorldBuilder {
     add_oriented_box(mesh_, upright(spot + toward_road * 0.8, kCurb + 6.4, yaw),
                      V3(0.9, 0.08, 0.06), {C::Pole, palette_.metal});
     add_oriented_box(mesh_, upright(spot + toward_road * 1.6, kCurb + 6.3, yaw),
-                     V3(0.3, 0.14, 0.06), {C::Pole, palette_.tank});  // the lamp head
+                     V3(0.3, 0.14, 0.06), {C::Pole, palette_.lamp});  // the lamp head
+    // its light: 1500 cd of warm white down a cone 50-72 degrees wide, just under the head
+    Lamp light;
+    light.position = at(spot + toward_road * 1.6, kCurb + 6.22);
+    light.cos_inner = std::cos(50 * kPi / 180), light.cos_outer = std::cos(72 * kPi / 180);
+    light.intensity = Eigen::Vector3f(1.0f, 0.86f, 0.68f) * 0.015f;
+    scene_.lamps.push_back(light);
   }
 
   // A trunk and a crown of irregular leaf clusters around it.
@@ -476,7 +491,7 @@ class WorldBuilder {
 
   // Windows in framed openings with sills, storey ledges and a cornice, per the building's dress.
   void facade(const V2& a, const V2& b, double base, double height, const Dress& d) {
-    const Paint glass{C::Building, palette_.glass}, frame{C::Building, d.frame};
+    const Paint frame{C::Building, d.frame};
     const double length = (b - a).norm();
     const int columns = int(length / 3.2);
     const V2 dir = (b - a) / length, out(dir.y(), -dir.x());
@@ -487,13 +502,26 @@ class WorldBuilder {
         const V2 p = a + dir * s + out * 0.065;
         const V3 p0(p.x() - dir.x() * 0.68, p.y() - dir.y() * 0.68, z + 0.02),
             p1(p.x() + dir.x() * 0.68, p.y() + dir.y() * 0.68, z + 0.02);
-        add_quad(mesh_, p0, p1, p1 + V3(0, 0, 1.76), p0 + V3(0, 0, 1.76), glass);
+        add_quad(mesh_, p0, p1, p1 + V3(0, 0, 1.76), p0 + V3(0, 0, 1.76), window(p0, z - base));
         if (d.sills) on_wall(a, b, s, 0.1, z - 0.1, V3(0.85, 0.1, 0.03), frame);
       }
       if (d.ledges) on_wall(a, b, length / 2, 0.06, z - 0.35, V3(length / 2, 0.06, 0.08), frame);
     }
     if (d.cornice)
       on_wall(a, b, length / 2, 0.15, base + height - 0.2, V3(length / 2 + 0.15, 0.15, 0.2), frame);
+  }
+
+  // A window's glass: a third of the windows (two thirds of the shop fronts on the ground floor)
+  // lit at night, picked by a hash of the window's place, so the world's random stream and
+  // geometry stay as they were.
+  Paint window(const V3& corner, double storey_height) const {
+    const bool shop = storey_height < 2;
+    const double pick =
+        tex::hash01(std::int64_t(std::floor(corner.x() * 10)),
+                    std::int64_t(std::floor(corner.y() * 10 + corner.z() * 7)), 0x11);
+    if (shop && pick < 0.65) return {C::Building, palette_.lit_shop};
+    if (!shop && pick < 0.33) return {C::Building, palette_.lit_windows[int(pick / 0.11)]};
+    return {C::Building, palette_.glass};
   }
 
   void gable(const V3& lo, const V3& hi, std::uint16_t material) {

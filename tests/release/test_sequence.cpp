@@ -35,7 +35,11 @@ TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json re
   const Sequence s = make_sequence(spec);
   const SequenceMeta meta = sequence_meta(s, plan, config);
   CHECK(meta.scene == "map00_seq01");
-  CHECK(meta.weather == to_json(s.weather));
+  nlohmann::json recorded = meta.weather;
+  CHECK(recorded.at("exposure") == s.city.scene.environment.exposure);
+  recorded.erase("exposure");
+  CHECK(recorded == to_json(s.weather));
+  CHECK(weather_from_json(meta.weather).time_of_day == plan.time_of_day);
   REQUIRE(meta.poses.size() == 3);
   CHECK(meta.poses[2].matrix() == s.frame_pair(2).rig.matrix());
   CHECK(meta.face_size == 8);

@@ -315,3 +315,57 @@ TEST_CASE("camera rays through points of a pixel match the projection's ray ther
     CHECK(worst < 1e-14);
   }
 }
+
+TEST_CASE("lamps light the road by the inverse-square law within their beams, and only when on") {
+  Scene scene;
+  add_box(scene.world, Eigen::Vector3f(-100, -100, -2), Eigen::Vector3f(100, 100, -1.7f),
+          SemanticClass::Road);
+  scene.materials[0].albedo = {0.5f, 0.5f, 0.5f};
+  Environment& e = scene.environment;
+  e.sky_zenith = e.sky_horizon = e.ground = e.sun_irradiance = Eigen::Vector3f::Zero();
+  Lamp spot;  // a street lamp's beam, straight down, full within 30 degrees, none beyond 50
+  spot.position = Vec3(1, 0.5, 4), spot.intensity = {2, 1.5, 1};
+  spot.cos_inner = std::cos(30 * indep::pi / 180), spot.cos_outer = std::cos(50 * indep::pi / 180);
+  Lamp bulb;  // all round
+  bulb.position = Vec3(-2, -1, 1), bulb.intensity = {0.3f, 0.3f, 0.3f};
+  scene.lamps = {spot, bulb};
+  const Projection down = Projection::cube_face(Face::Down, 24);
+  const auto render = [&](double level) {
+    e.lamp_level = level;
+    return Renderer(scene).color(down, FramePair{}, {128, 1, 3});  // lamps of two colours: noise
+  };
+  const Image<float> off = render(0), on = render(2);
+  CHECK(*std::max_element(off.data.begin(), off.data.end()) == 0.0f);  // off: no light at all
+  // E = I cos(theta) / r^2 from each lamp, the spot's beam a step between its edges (flagged
+  // where a pixel's ground point is near that step)
+  const auto radiance = [&](const Vec2& pixel, bool& edge) {
+    const Vec3 d = down.ray(pixel).normalized();
+    const Vec3 ground = d * (-1.7 / d.z());
+    Eigen::Vector3d irradiance = Eigen::Vector3d::Zero();
+    for (const Lamp& lamp : scene.lamps) {
+      const Vec3 to_ground = ground - lamp.position;
+      const double r2 = to_ground.squaredNorm(), cos_theta = -to_ground.z() / std::sqrt(r2);
+      double beam = 1;
+      if (lamp.cos_outer > -1) {
+        const double c = lamp.axis.dot(to_ground.normalized());
+        edge |= c > lamp.cos_outer - 0.03 && c < lamp.cos_inner + 0.03;
+        beam = c >= lamp.cos_inner ? 1 : 0;
+      }
+      irradiance += 2 * lamp.intensity.cast<double>() * beam * cos_theta / r2;
+    }
+    return Eigen::Vector3d(0.5 * irradiance / indep::pi);
+  };
+  int checked = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) {
+      bool edge = false;
+      Eigen::Vector3d expected = Eigen::Vector3d::Zero();  // the mean over the pixel's area
+      for (int sy = 0; sy < 4; ++sy)
+        for (int sx = 0; sx < 4; ++sx)
+          expected += radiance(Vec2(x + (sx + 0.5) / 4, y + (sy + 0.5) / 4), edge) / 16;
+      if (edge) continue;
+      ++checked;
+      for (int c = 0; c < 3; ++c) CHECK(on.pixel(x, y)[c] == Approx(expected[c]).epsilon(0.02));
+    }
+  CHECK(checked > 300);
+}

@@ -41,20 +41,25 @@ double luminance(const Image<float>& image, std::size_t pixel) {
   return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
 }
 
-double mean_luminance(const WeatherFrame& f) {
-  double sum = 0;
-  for (std::size_t i = 0; i < f.truth.depth.data.size(); ++i) sum += luminance(f.color, i);
-  return sum / double(f.truth.depth.data.size());
+// Luminance of the light on level ground from the sun and the sky (after the exposure).
+double level_light(const Weather& weather) {
+  const Environment e = weather_environment(weather);
+  const Eigen::Vector3f light = e.sky_dome->horizontal_irradiance() +
+                                e.sun_irradiance * float(std::max(0.0, e.sun_direction.z()));
+  return 0.2126 * light[0] + 0.7152 * light[1] + 0.0722 * light[2];
 }
 
 }  // namespace
 
-TEST_CASE("the four weathers change colour only and each in its own way") {
+TEST_CASE("the four weathers and the times of day change colour only and each in its own way") {
   const WeatherFrame sunny = render_city(weather_preset("sunny")),
                      cloud = render_city(weather_preset("cloud")),
                      fog = render_city(weather_preset("fog")),
-                     rain = render_city(weather_preset("rain"));
-  for (const WeatherFrame* other : {&cloud, &fog, &rain}) {
+                     rain = render_city(weather_preset("rain")),
+                     dawn = render_city(at_time_of_day(weather_preset("sunny"), "dawn", 4)),
+                     rainy_dusk = render_city(at_time_of_day(weather_preset("rain"), "-3", 4)),
+                     night = render_city(at_time_of_day(weather_preset("wet"), "night", 4));
+  for (const WeatherFrame* other : {&cloud, &fog, &rain, &dawn, &rainy_dusk, &night}) {
     CHECK(other->truth.flow.data == sunny.truth.flow.data);
     CHECK(other->truth.semantic.data == sunny.truth.semantic.data);
     CHECK(other->truth.instance.data == sunny.truth.instance.data);
@@ -85,8 +90,9 @@ TEST_CASE("the four weathers change colour only and each in its own way") {
   const double near_slope = slope(0, 10), far_slope = slope(40, 1e9);
   INFO("fog over clear luminance: slope near " << near_slope << ", far " << far_slope);
   CHECK(far_slope < 0.5 * near_slope);
-  // rain: darker than a sunny day
-  CHECK(mean_luminance(rain) < 0.7 * mean_luminance(sunny));
+  // rain: less light on the street than on a sunny day, even after the exposure (wet roads
+  // mirroring a bright overcast can still make its frame as bright)
+  CHECK(level_light(weather_preset("rain")) < 0.75 * level_light(weather_preset("sunny")));
   // rain streaks: the colour-only streaks (faint: opacity 0.13) and puddles change pixels the
   // ground truth never sees
   const WeatherFrame dry = render_city(weather_preset("rain"), true);
@@ -95,6 +101,32 @@ TEST_CASE("the four weathers change colour only and each in its own way") {
     changed += std::abs(luminance(rain.color, i) - luminance(dry.color, i)) > 0.01;
   CHECK(changed > int(dry.truth.depth.data.size() / 300));
   CHECK(rain.truth.semantic.data == dry.truth.semantic.data);
+}
+
+TEST_CASE("a city's lamps and lit glass switch on after sunset and off by day") {
+  CityConfig config;
+  config.map = 0, config.seed = 2, config.vehicles = 6, config.pedestrians = 0;
+  config.duration = 0.2;
+  int on_rigid = 0;
+  for (const char* time : {"day", "night"}) {
+    City city = make_city(config);
+    apply_weather(
+        at_time_of_day(weather_preset("sunny"), time, 1), 1,
+        [&city](double t) { return city.rig(t); }, city.scene);
+    const bool night = std::string(time) == "night";
+    int glowing = 0, lamp_materials = 0;
+    for (const Material& m : city.scene.materials)
+      if (!m.night_emission.isZero())
+        ++lamp_materials, glowing += m.kind == Material::Kind::Emissive;
+    CHECK(lamp_materials >= 3);  // street lamps, head and tail lamps
+    CHECK(glowing == (night ? lamp_materials : 0));
+    CHECK((city.scene.environment.lamp_level > 0) == night);
+    // street lamps along the roads and two beams per moving vehicle, on their actors
+    on_rigid = 0;
+    for (const Lamp& lamp : city.scene.lamps) on_rigid += lamp.actor >= 0;
+    CHECK(city.scene.lamps.size() > std::size_t(on_rigid) + 20);
+  }
+  CHECK(on_rigid >= 2 * 5);
 }
 
 TEST_CASE("clouds soften the shadow of a box that the sun casts sharply") {

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "flowscape/core/random.h"
 #include "flowscape/scenes/shapes.h"
+#include "sky.h"
 
 namespace flowscape {
 namespace {
@@ -16,7 +18,8 @@ using Rgb = Eigen::Vector3f;
 Weather make(const char* name, double elevation, double azimuth, double turbidity,
              double cloudiness, double fog, double rain, double wetness, double puddles,
              double wind) {
-  return {name, elevation, azimuth, turbidity, cloudiness, fog, 25, rain, wetness, puddles, wind};
+  return {name, "day", elevation, azimuth, turbidity, cloudiness,
+          fog,  25,    rain,      wetness, puddles,   wind};
 }
 
 const std::vector<Weather>& presets() {
@@ -40,20 +43,6 @@ void require_range(double value, double lo, double hi, const char* name) {
     throw std::invalid_argument(std::string("weather ") + name + " = " + std::to_string(value) +
                                 " is not in [" + std::to_string(lo) + ", " + std::to_string(hi) +
                                 "]");
-}
-
-// Sky light through clouds: the clear sky's colours faded towards an overcast grey.
-void sky(const Weather& w, double sun_height, Environment& e) {
-  const float haze = float(std::clamp((w.turbidity - 2) / 8, 0.0, 1.0) * 0.7);
-  const Rgb hazy(0.75f, 0.78f, 0.8f);
-  const float light = float(0.3 + 0.7 * sun_height) * float(1 - 0.4 * w.precipitation);
-  Rgb zenith = (Rgb(0.25f, 0.4f, 0.8f) * (1 - haze) + hazy * haze) * light;
-  Rgb horizon = (Rgb(0.7f, 0.8f, 0.9f) * (1 - haze * 0.5f) + hazy * haze * 0.5f) * light;
-  const float c = float(w.cloudiness);
-  const Rgb overcast = Rgb::Constant(0.55f) * light;
-  e.sky_zenith = zenith * (1 - c) + overcast * c;
-  e.sky_horizon = horizon * (1 - c) + overcast * 1.1f * c;
-  e.ground = e.sky_horizon * 0.25f;
 }
 
 Mesh crossed_streaks(Random& random, int count, double half, double height, double wind) {
@@ -185,11 +174,14 @@ Weather randomized(const Weather& p, std::uint64_t seed) {
   w.wetness = std::clamp(p.wetness * random.uniform(0.85, 1.15), 0.0, 1.0);
   w.puddles = std::clamp(p.puddles * random.uniform(0.7, 1.3), 0.0, 1.0);
   w.wind = std::clamp(p.wind + random.uniform(-0.1, 0.1), 0.0, 1.0);
+  w.cloud_shift = std::floor(random.uniform(0, 1000));
   return w;
 }
 
 void validate(const Weather& w) {
-  require_range(w.sun_elevation, 0, 90, "sun_elevation");
+  require_range(w.sun_elevation, -90, 90, "sun_elevation");
+  require_range(w.moon_elevation, -90, 90, "moon_elevation");
+  require_range(w.moon_azimuth, -360, 720, "moon_azimuth");
   require_range(w.sun_azimuth, -360, 720, "sun_azimuth");
   require_range(w.turbidity, 1, 20, "turbidity");
   require_range(w.cloudiness, 0, 1, "cloudiness");
@@ -199,6 +191,54 @@ void validate(const Weather& w) {
   require_range(w.wetness, 0, 1, "wetness");
   require_range(w.puddles, 0, 1, "puddles");
   require_range(w.wind, 0, 1, "wind");
+  require_range(w.cloud_shift, 0, 1000, "cloud_shift");
+}
+
+std::vector<std::string> named_times_of_day() { return {"day", "dawn", "dusk", "night"}; }
+
+namespace {
+
+// The sun elevation a numeric time of day names, or NaN for a name.
+double elevation_named(const std::string& time) {
+  std::size_t used = 0;
+  double elevation = std::numeric_limits<double>::quiet_NaN();
+  try {
+    elevation = std::stod(time, &used);
+  } catch (const std::exception&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (used != time.size() || !std::isfinite(elevation))
+    throw std::invalid_argument("time of day \"" + time + "\" is not a number");
+  return elevation;
+}
+
+}  // namespace
+
+void validate_time_of_day(const std::string& time) {
+  const std::vector<std::string> names = named_times_of_day();
+  if (std::find(names.begin(), names.end(), time) != names.end()) return;
+  const double elevation = elevation_named(time);
+  if (std::isnan(elevation))
+    throw std::invalid_argument("unknown time of day \"" + time +
+                                "\" (day, dawn, dusk, night, or a sun elevation in degrees)");
+  require_range(elevation, -90, 90, "sun_elevation of the time of day");
+}
+
+Weather at_time_of_day(Weather w, const std::string& time, std::uint64_t seed) {
+  validate_time_of_day(time);
+  w.time_of_day = time;
+  if (time == "day") return w;
+  Random random(seed * 0x9e3779b97f4a7c15ull + 0x510e527fade682d1ull);
+  if (time == "dawn" || time == "dusk") {
+    w.sun_elevation = random.uniform(-5, 6);
+    w.sun_azimuth = (time == "dawn" ? 90 : 270) + random.uniform(-30, 30);
+  } else if (time == "night") {
+    w.sun_elevation = random.uniform(-40, -18), w.sun_azimuth = random.uniform(0, 360);
+    w.moon_elevation = random.uniform(-10, 60), w.moon_azimuth = random.uniform(0, 360);
+  } else {
+    w.sun_elevation = elevation_named(time);
+  }
+  return w;
 }
 
 namespace {
@@ -210,13 +250,14 @@ void for_each_number(W& w, Visit&& visit) {
   visit("turbidity", w.turbidity), visit("cloudiness", w.cloudiness);
   visit("fog_density", w.fog_density), visit("fog_height", w.fog_height);
   visit("precipitation", w.precipitation), visit("wetness", w.wetness);
-  visit("puddles", w.puddles), visit("wind", w.wind);
+  visit("puddles", w.puddles), visit("wind", w.wind), visit("cloud_shift", w.cloud_shift);
+  visit("moon_elevation", w.moon_elevation), visit("moon_azimuth", w.moon_azimuth);
 }
 
 }  // namespace
 
 nlohmann::json to_json(const Weather& w) {
-  nlohmann::json j = {{"preset", w.preset}};
+  nlohmann::json j = {{"preset", w.preset}, {"time_of_day", w.time_of_day}};
   for_each_number(w, [&](const char* key, double value) { j[key] = value; });
   return j;
 }
@@ -225,6 +266,7 @@ Weather weather_from_json(const nlohmann::json& j) {
   Weather w;
   try {
     w = weather_preset(j.at("preset").get<std::string>());
+    w.time_of_day = j.value("time_of_day", std::string("day"));
     for_each_number(w, [&](const char* key, double& field) {
       if (j.contains(key)) field = j.at(key).get<double>();
     });
@@ -232,6 +274,7 @@ Weather weather_from_json(const nlohmann::json& j) {
     throw std::invalid_argument(std::string("weather: ") + e.what());
   }
   validate(w);
+  validate_time_of_day(w.time_of_day);
   return w;
 }
 
@@ -241,21 +284,27 @@ Environment weather_environment(const Weather& w) {
   const double elevation = w.sun_elevation * kPi / 180, azimuth = w.sun_azimuth * kPi / 180;
   e.sun_direction = V3(std::cos(elevation) * std::cos(azimuth),
                        std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
-  const double height = std::sin(elevation);
-  // lower sun: a longer way through the air, less and warmer light
-  const float air = float(std::pow(std::max(0.05, height), 0.35) * (1 - 0.04 * w.turbidity));
-  const Rgb warm(1.0f, float(0.8 + 0.2 * height), float(0.6 + 0.4 * height));
-  e.sun_irradiance = Rgb(3.0f, 2.85f, 2.6f).cwiseProduct(warm) * air *
-                     float((1 - 0.92 * w.cloudiness) * (1 - 0.6 * w.precipitation));
-  e.sun_angular_radius = 0.00465 + 0.25 * w.cloudiness * w.cloudiness;  // clouds spread the sun
-  e.sun_disc_visibility = float(std::pow(1 - w.cloudiness, 3));         // and hide its disc
-  sky(w, height, e);
+  sky::set_physical_sky(w, e);
   e.fog.density = w.fog_density, e.fog.height = w.fog_height;
   return e;
 }
 
+namespace {
+
+// Lamps, lit signs and windows glow once the sun has set: their night emission at the exposure.
+void switch_lamps(Scene& scene) {
+  const float level = float(scene.environment.lamp_level);
+  if (level <= 0) return;
+  for (Material& m : scene.materials)
+    if (!m.night_emission.isZero())
+      m.kind = Material::Kind::Emissive, m.emission = m.night_emission * level;
+}
+
+}  // namespace
+
 void apply_weather(const Weather& w, std::uint64_t seed, const PoseTrack& rig, Scene& scene) {
   scene.environment = weather_environment(w);
+  switch_lamps(scene);
   Random random(seed ^ 0x3c6ef372fe94f82bull);
   if (w.wetness > 0) wet_materials(w, scene);
   if (w.puddles > 0) scene.actors.push_back(puddle_actor(w, random, scene));

@@ -28,7 +28,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("maps", c.maps), visit("sequences_per_map", c.sequences_per_map);
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
-  visit("weathers", c.weathers);
+  visit("weathers", c.weathers), visit("times_of_day", c.times_of_day);
   visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
@@ -72,6 +72,8 @@ void validate(const ReleaseConfig& c) {
           "denoise_model must be default or small");
   require(!c.weathers.empty(), "weathers must not be empty");
   for (const std::string& w : c.weathers) weather_preset(w);
+  require(!c.times_of_day.empty(), "times_of_day must not be empty");
+  for (const std::string& t : c.times_of_day) validate_time_of_day(t);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");
   require(c.turn_share >= 0 && c.turn_share <= 1, "turn_share must be in 0..1");
@@ -244,7 +246,8 @@ std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
       const bool turns = c.ego_routes == "mix" && std::floor((number + 1) * c.turn_share) >
                                                       std::floor(number * c.turn_share);
       plans.push_back({sequence_name(m, s), m, s, number, c.weathers[s % c.weathers.size()],
-                       derived_seed(c.seed, m, s), turns});
+                       c.times_of_day[number % c.times_of_day.size()], derived_seed(c.seed, m, s),
+                       turns});
     }
   return plans;
 }

@@ -24,10 +24,11 @@ constexpr const char* kCardFile = "README.md";
 constexpr const char* kStatisticsFigure = "statistics.svg";
 
 void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
-  std::map<std::string, int> per_weather;
+  std::map<std::string, int> per_weather, per_time;
   std::map<int, int> per_map;
   const std::vector<SequencePlan> plans = plan_sequences(c);
-  for (const SequencePlan& p : plans) ++per_weather[p.weather], ++per_map[p.map];
+  for (const SequencePlan& p : plans)
+    ++per_weather[p.weather], ++per_time[p.time_of_day], ++per_map[p.map];
   md << "## Counts\n\n| map | sequences | frames | flow pairs |\n| --- | --- | --- | --- |\n";
   for (const auto& [map, n] : per_map)
     md << "| " << map << " " << map_name(map) << " | " << n << " | " << n * c.frames << " | "
@@ -37,6 +38,12 @@ void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
      << " |\n\n| weather | sequences | share |\n| --- | --- | --- |\n";
   for (const auto& [weather, n] : per_weather)
     md << "| " << weather << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
+  md << "\n| time of day | sequences | share |\n| --- | --- | --- |\n";
+  for (const auto& [time, n] : per_time)
+    md << "| " << time << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
+  md << "\nDawn and dusk put the sun between 5 degrees below the horizon and 6 above, night 18-40 "
+        "below with the moon up or not and the lamps on; every "
+        "sequence has one exposure, recorded in its meta.json (`exposure`).\n";
 }
 
 // Mean bytes per frame of each kind of the release (all views), from its files on disk.

@@ -28,6 +28,7 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
                     config.frames,
                     config.models};
   set_actors(spec, config);
+  spec.time_of_day = plan.time_of_day;
   return spec;
 }
 
@@ -117,7 +118,8 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
   city_config.duration = (spec.frames + 1) / kFrameRate;
   city_config.models = spec.models;
-  const Weather weather = randomized(weather_preset(spec.weather), spec.seed);
+  const Weather weather = at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
+                                         spec.time_of_day, spec.seed);
   city_config.actors = spec.actors;
   city_config.wet = weather.precipitation > 0;
   city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;
@@ -178,6 +180,7 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.scene = plan.name, meta.map = plan.map, meta.sequence = plan.index;
   meta.map_name = map_name(plan.map), meta.seed = plan.seed;
   meta.weather = to_json(s.weather);
+  meta.weather["exposure"] = s.city.scene.environment.exposure;  // the sky's, applied to all light
   meta.frames = config.frames, meta.fps = kFrameRate;
   meta.erp_height = config.height;
   meta.camera_height = s.city.mount.height;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "flowscape/core/types.h"
+#include "flowscape/scenes/sky_dome.h"
 #include "flowscape/scenes/texture.h"
 
 namespace flowscape {
@@ -81,9 +82,15 @@ struct Material {
   Eigen::Vector3f albedo{0.6f, 0.6f, 0.6f};  // the mean colour (what is seen without textures)
   float roughness = 0.1f;                    // width of the Glossy / Metal lobe (0 = mirror)
   Eigen::Vector3f emission{0, 0, 0};         // linear radiance, W / (m^2 sr) per channel
-  float opacity = 1;                         // Streak only
-  std::shared_ptr<const Pattern> pattern;    // procedural texture (texture.h), or none
-  ImageMaps images;                          // image textures, or none
+  // What it emits when the lamps are on (a lamp's glass, a lit sign), in the sky's units before
+  // the exposure: apply_weather makes it Emissive with emission night_emission x lamp_level.
+  Eigen::Vector3f night_emission{0, 0, 0};
+  // A lamp's body: it glows for the camera and in mirrors, while its light on surfaces comes from
+  // its Lamp (Scene::lamps); otherwise (a lit window) its glow lights what it faces.
+  bool lamp_body = false;
+  float opacity = 1;                       // Streak only
+  std::shared_ptr<const Pattern> pattern;  // procedural texture (texture.h), or none
+  ImageMaps images;                        // image textures, or none
 };
 
 // Per-vertex attributes are optional: each is empty or holds one entry per vertex.
@@ -121,6 +128,13 @@ struct Environment {
   float sun_disc_visibility = 1;  // share of the disc's radiance seen directly (clouds hide it)
   Eigen::Vector3f sky_zenith{0.25f, 0.4f, 0.8f}, sky_horizon{0.7f, 0.8f, 0.9f};  // radiance
   Eigen::Vector3f ground{0.15f, 0.14f, 0.12f};  // radiance of the dome below the horizon
+  // The sky above the horizon as a table (weather's physical sky: atmosphere and clouds); null: the
+  // gradient from sky_horizon to sky_zenith.
+  std::shared_ptr<const SkyDome> sky_dome;
+  double exposure = 1;  // the camera's: already applied to every radiance above (recorded)
+  // What the lamps' intensities (Scene::lamps) are multiplied by: 0 by day (lamps off), the
+  // exposure once the sun has set. At night the sun above is the moon.
+  double lamp_level = 0;
   Fog fog;
 };
 
@@ -161,9 +175,25 @@ struct Actor {
   bool color_only = false;
 };
 
+// A lamp's light: a point source (a street lamp's bulb, a vehicle's head lamp) that shines when
+// the environment's lamp_level is above 0, reaching surfaces by next-event estimation only; what a
+// camera sees of it is its glowing body (its materials' night_emission).
+struct Lamp {
+  Vec3 position = Vec3::Zero();  // in its actor's frame, or the world's
+  Vec3 axis = -Vec3::UnitZ();    // the beam's axis (unit)
+  // Full intensity within cos_inner of the axis, none beyond cos_outer, a smooth step between
+  // (pbrt's spot light); -1, -1: all round.
+  double cos_inner = -1, cos_outer = -1;
+  // On the axis, linear RGB, in the sky's units before the exposure (irradiance x m^2: the
+  // top-of-atmosphere sun is 1; a 1000 cd street lamp is 0.01).
+  Eigen::Vector3f intensity{0, 0, 0};
+  int actor = -1;  // index into Scene::actors, or -1: fixed to the world
+};
+
 struct Scene {
   Mesh world;  // static geometry, instance 0
   std::vector<Actor> actors;
+  std::vector<Lamp> lamps;
   std::vector<Material> materials{Material{}};
   Environment environment;
 };

@@ -13,16 +13,21 @@ namespace flowscape {
 
 struct Weather {
   std::string preset = "sunny";
-  double sun_elevation = 55;  // degrees above the horizon, [0, 90]
-  double sun_azimuth = 35;    // degrees, counter-clockwise from the world's x axis
-  double turbidity = 2.5;     // haze of the clear sky, [1, 20]
-  double cloudiness = 0.1;    // [0, 1]: 1 = overcast, the sun hidden, shadows soft
-  double fog_density = 0;     // extinction at the ground, 1/m, [0, 1]
-  double fog_height = 25;     // metres over which the fog thins by e, > 0
-  double precipitation = 0;   // rain, [0, 1]: streaks and dimmer light
-  double wetness = 0;         // [0, 1]: darker, glossier ground
-  double puddles = 0;         // [0, 1]: share of wet road under standing water
-  double wind = 0;            // [0, 1]: slant of the rain
+  std::string time_of_day = "day";  // what at_time_of_day set: day, dawn, dusk or an elevation
+  // Degrees above the horizon, [-90, 90]: below 0 the lamps are on, below -6 it is night and the
+  // moon lights the scene.
+  double sun_elevation = 55;
+  double sun_azimuth = 35;   // degrees, counter-clockwise from the world's x axis
+  double turbidity = 2.5;    // haze of the clear sky, [1, 20]
+  double cloudiness = 0.1;   // [0, 1]: share of the sky under cumulus; near 1 an overcast sheet
+  double fog_density = 0;    // extinction at the ground, 1/m, [0, 1]
+  double fog_height = 25;    // metres over which the fog thins by e, > 0
+  double precipitation = 0;  // rain, [0, 1]: streaks and dimmer light
+  double wetness = 0;        // [0, 1]: darker, glossier ground
+  double puddles = 0;        // [0, 1]: share of wet road under standing water
+  double wind = 0;           // [0, 1]: slant of the rain
+  double cloud_shift = 0;    // km, [0, 1000]: where over the cloud pattern the sky lies
+  double moon_elevation = 40, moon_azimuth = 200;  // degrees; the moon shines at night only
 };
 
 // sunny, cloud, fog, rain, and CARLA-like combinations: wet, wet_cloudy, soft_rain, hard_rain,
@@ -33,10 +38,19 @@ Weather weather_preset(const std::string& name);  // throws std::invalid_argumen
 Weather randomized(const Weather& preset, std::uint64_t seed);
 void validate(const Weather& weather);  // throws std::invalid_argument naming the bad value
 
+// Times of day: "day" keeps the weather's sun; "dawn" and "dusk" put it low in the east or the
+// west, from 5 degrees below the horizon (blue hour) to 6 above (golden hour); "night" puts it 18
+// to 40 degrees below and the moon anywhere from 10 degrees below the horizon (a moonless night)
+// to 60 above; all chosen by `seed`. A number is the sun's elevation in degrees, [-90, 90].
+std::vector<std::string> named_times_of_day();       // day, dawn, dusk, night
+void validate_time_of_day(const std::string& time);  // throws std::invalid_argument
+Weather at_time_of_day(Weather weather, const std::string& time, std::uint64_t seed);
+
 nlohmann::json to_json(const Weather& weather);
 Weather weather_from_json(const nlohmann::json& json);  // validated
 
-// The sun and sky of a weather (and its fog), without the scene.
+// The sun and sky of a weather (and its fog), without the scene: a physical atmosphere under a
+// cloud layer, brought to one exposure (Environment::exposure).
 Environment weather_environment(const Weather& weather);
 // Sets the scene's environment, wets its ground materials and adds the colour-only rain streaks
 // (falling around `rig`, the camera's path) and puddles. `seed` places streaks and puddles.

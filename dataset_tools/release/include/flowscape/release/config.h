@@ -29,6 +29,9 @@ struct ReleaseConfig {
   // Weather presets, cycled over the sequences of a map (FlowScape: 5 sunny, cloud, fog, rain).
   std::vector<std::string> weathers{"sunny", "sunny", "sunny", "sunny",
                                     "sunny", "cloud", "fog",   "rain"};
+  // Times of day (weather.h's at_time_of_day: day, dawn, dusk or a sun elevation), cycled over the
+  // release's sequences by their number, so they fall across maps and weathers.
+  std::vector<std::string> times_of_day{"day", "day", "day", "dawn", "dusk", "night"};
   int vehicles = 120, pedestrians = 80;
   // The share of sequences whose ego turns left or right at a junction within its frames (city.h's
   // EgoRoute::Turn; the others drive on as traffic lets them, EgoRoute::Drive): sequence number n
@@ -115,7 +118,7 @@ std::map<std::string, std::string> parse_models(const std::vector<std::string>& 
 struct SequencePlan {
   std::string name;        // map<MM>_seq<SS>
   int map, index, number;  // number: position in the whole release
-  std::string weather;
+  std::string weather, time_of_day;
   std::uint64_t seed;
   bool turns;  // its ego turns at a junction (ReleaseConfig::turn_share of ego_routes "mix")
 };

@@ -27,6 +27,7 @@ struct SequenceSpec {
   bool draw_ego = true;
   std::vector<Vec3> ego_cameras{Vec3::Zero()};  // the rig's optical centres (rig frame)
   std::vector<std::string> asset_packs{};
+  std::string time_of_day = "day";  // weather.h's at_time_of_day
 };
 // The spec of a planned sequence of a release (its ego start follows from its seed, its route
 // from the plan's `turns`).
