@@ -105,9 +105,8 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
   const Image<float> color = release_color(o.color, sequence, renderer, erp, frame, gt);
   Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
   cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
-  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather + " " + time_of_day,
-              cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1,
-              cv::LINE_AA);
+  cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
+              cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);

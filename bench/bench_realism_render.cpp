@@ -4,7 +4,9 @@
 // the release's weather mix spread over the 8 (sunny x5, cloud, fog, rain), the six cube faces of
 // two frames as the release renders them (colour denoised, sRGB), each with its instance and
 // semantic image, and actors.json (every instance's kind and class). A config.json (the
-// gen_flowscape config keys) changes what the release would change (actor models, class table...).
+// gen_flowscape config keys) changes what the release would change (actor models, class table...);
+// the set is by day unless its `times_of_day` says otherwise (cycled over the maps, like the
+// weathers).
 #include <tbb/parallel_for.h>
 
 #include <cstdio>
@@ -16,6 +18,7 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/config.h"
+#include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/scenes/actors.h"
 
@@ -62,13 +65,19 @@ int main(int argc, char** argv) {
     const int face_size = argc > 2 ? std::atoi(argv[2]) : 384;
     const std::vector<int> frames = parse_frames(argc > 3 ? argv[3] : "10,60");
     ReleaseConfig config;
-    if (argc > 4) config = resolve_config({false, argv[4]});
+    config.times_of_day = {"day"};
+    if (argc > 4) {
+      const std::vector<std::string> by_day = config.times_of_day;
+      config = resolve_config({false, argv[4]});
+      if (!read_json(argv[4]).contains("times_of_day")) config.times_of_day = by_day;
+    }
     const std::vector<std::string> mix = ReleaseConfig{}.weathers;
     config.maps = kMapCount, config.sequences_per_map = 1;
     config.frames = *std::max_element(frames.begin(), frames.end()) + 1;
     for (const SequencePlan& plan : plan_sequences(config)) {
       SequenceSpec spec = sequence_spec(config, plan);
       spec.weather = mix[std::size_t(plan.map) % mix.size()];
+      spec.time_of_day = config.times_of_day[std::size_t(plan.map) % config.times_of_day.size()];
       const Sequence sequence = make_sequence(spec);
       Renderer renderer(sequence.city.scene);
       for (int frame : frames) {
@@ -83,8 +92,10 @@ int main(int argc, char** argv) {
         std::ofstream(dir / "actors.json") << nlohmann::json{
             {"map", map_name(plan.map)},
             {"weather", spec.weather},
+            {"time_of_day", spec.time_of_day},
             {"actors", actor_list(sequence)}}.dump();
-        std::printf("%s frame %d (%s)\n", plan.name.c_str(), frame, spec.weather.c_str());
+        std::printf("%s frame %d (%s, %s)\n", plan.name.c_str(), frame, spec.weather.c_str(),
+                    spec.time_of_day.c_str());
         std::fflush(stdout);
       }
     }

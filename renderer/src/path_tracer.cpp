@@ -184,9 +184,9 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   }
   if (first) path.normal += s.smooth;
   if (m.kind == Material::Kind::Emissive) {
-    // a lamp's glowing body: seen directly and in mirrors; its light on surfaces comes from its
-    // point source (Scene::lamps), as the sun's does
-    if (path.sun_visible || !m.lamp_body)
+    // a glow-only body (a lamp's, a lit window): seen directly and in mirrors; a lamp's light on
+    // surfaces comes from its point source (Scene::lamps), as the sun's does
+    if (path.sun_visible || !m.glow_only)
       path.light[path.layer] += throughput.cwiseProduct(m.emission.cast<double>());
     return false;
   }

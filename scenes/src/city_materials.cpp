@@ -260,7 +260,7 @@ Material window_glass(std::uint64_t seed) {
 
 Material lit_window(std::uint64_t seed, const Rgb& glow) {
   Material m = window_glass(seed);
-  m.night_emission = glow;
+  m.night_emission = glow, m.glow_only = true;
   return m;
 }
 
@@ -423,14 +423,14 @@ Material vehicle_glass() {
 Material lamp(const Rgb& colour, const Rgb& night_glow) {
   Material m;
   m.kind = Material::Kind::Glossy, m.albedo = colour, m.roughness = 0.02f;
-  m.night_emission = night_glow, m.lamp_body = true;
+  m.night_emission = night_glow, m.glow_only = true;
   return m;
 }
 
 Material street_lamp() {
   Material m;
   m.kind = Material::Kind::Glossy, m.albedo = {0.8f, 0.8f, 0.76f}, m.roughness = 0.3f;
-  m.night_emission = Rgb(1.0f, 0.86f, 0.68f) * 0.02f, m.lamp_body = true;
+  m.night_emission = Rgb(1.0f, 0.86f, 0.68f) * 0.02f, m.glow_only = true;
   return m;
 }
 

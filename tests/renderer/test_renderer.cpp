@@ -197,15 +197,22 @@ Scene sunlit_street() {
   return scene;
 }
 
-}  // namespace
-
-TEST_CASE("a sunlit diffuse plane has radiance albedo * irradiance * cos / pi") {
+// A road 1.7 m below the origin under a black sky: only the sun or lamps light it.
+Scene road_under_black_sky(const Eigen::Vector3f& albedo) {
   Scene scene;
   add_box(scene.world, Eigen::Vector3f(-1000, -1000, -2), Eigen::Vector3f(1000, 1000, -1.7f),
           SemanticClass::Road);
-  scene.materials[0].albedo = {0.5f, 0.25f, 0.75f};
+  scene.materials[0].albedo = albedo;
   Environment& e = scene.environment;
-  e.sky_zenith = e.sky_horizon = e.ground = Eigen::Vector3f::Zero();  // the sun is the only light
+  e.sky_zenith = e.sky_horizon = e.ground = Eigen::Vector3f::Zero();
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("a sunlit diffuse plane has radiance albedo * irradiance * cos / pi") {
+  Scene scene = road_under_black_sky({0.5f, 0.25f, 0.75f});
+  Environment& e = scene.environment;
   e.sun_direction = Vec3(0.6, 0, 0.8);
   Renderer renderer(scene);
   const Image<float> down =
@@ -317,12 +324,9 @@ TEST_CASE("camera rays through points of a pixel match the projection's ray ther
 }
 
 TEST_CASE("lamps light the road by the inverse-square law within their beams, and only when on") {
-  Scene scene;
-  add_box(scene.world, Eigen::Vector3f(-100, -100, -2), Eigen::Vector3f(100, 100, -1.7f),
-          SemanticClass::Road);
-  scene.materials[0].albedo = {0.5f, 0.5f, 0.5f};
+  Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
   Environment& e = scene.environment;
-  e.sky_zenith = e.sky_horizon = e.ground = e.sun_irradiance = Eigen::Vector3f::Zero();
+  e.sun_irradiance = Eigen::Vector3f::Zero();
   Lamp spot;  // a street lamp's beam, straight down, full within 30 degrees, none beyond 50
   spot.position = Vec3(1, 0.5, 4), spot.intensity = {2, 1.5, 1};
   spot.cos_inner = std::cos(30 * indep::pi / 180), spot.cos_outer = std::cos(50 * indep::pi / 180);

@@ -85,9 +85,10 @@ struct Material {
   // What it emits when the lamps are on (a lamp's glass, a lit sign), in the sky's units before
   // the exposure: apply_weather makes it Emissive with emission night_emission x lamp_level.
   Eigen::Vector3f night_emission{0, 0, 0};
-  // A lamp's body: it glows for the camera and in mirrors, while its light on surfaces comes from
-  // its Lamp (Scene::lamps); otherwise (a lit window) its glow lights what it faces.
-  bool lamp_body = false;
+  // Emissive, it glows for the camera and in mirrors but lights nothing it is found from by chance:
+  // a lamp's body (its light comes from its Lamp, Scene::lamps) or a lit window (its light on the
+  // street is small next to the lamps', and found only by chance it would be noise).
+  bool glow_only = false;
   float opacity = 1;                       // Streak only
   std::shared_ptr<const Pattern> pattern;  // procedural texture (texture.h), or none
   ImageMaps images;                        // image textures, or none
