@@ -511,7 +511,10 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
   for (const Pose& pose : parked) {
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
     record.parked = true;
+    const std::size_t first = city.scene.actors.size();
     vehicle(ActorKind::Car, std::make_shared<const Track>(Track{1, {pose}, {0}}), record);
+    for (std::size_t a = first; a < city.scene.actors.size(); ++a)
+      library.switch_off_lamps(city.scene.actors[a]);
   }
   if (!config.draw_ego) return;
   ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};

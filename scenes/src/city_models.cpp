@@ -145,7 +145,7 @@ struct ActorLibrary::Impl {
   std::map<Livery, std::shared_ptr<const Mesh>> roofs;
   std::map<double, std::uint16_t> tyres;
   std::uint16_t glass, trim, chrome, head_lamp, tail_lamp, indicator, interior, underbody, grille,
-      eyes;
+      eyes, dark_head_lamp, dark_tail_lamp;
 
   Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
     glass = add_material(scene, cm::clear_glass());
@@ -154,6 +154,8 @@ struct ActorLibrary::Impl {
     head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}, Rgb(1, 0.97f, 0.9f) * 0.03f));
     tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}, {0.003f, 1e-5f, 1e-5f}));
     indicator = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}, {0, 0, 0}));
+    dark_head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}));
+    dark_tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}));
     interior = add_material(scene, cm::upholstery(seed));
     underbody = add_material(scene, cm::underbody());
     grille = add_material(scene, cm::grille());
@@ -493,6 +495,14 @@ std::vector<Lamp> ActorLibrary::head_lamps(const Actor& vehicle, int actor_index
     lamps.push_back(beam);
   }
   return lamps;
+}
+
+void ActorLibrary::switch_off_lamps(Actor& vehicle) const {
+  for (Part& part : vehicle.parts)
+    for (std::uint16_t& material : part.materials) {
+      if (material == impl_->head_lamp) material = impl_->dark_head_lamp;
+      if (material == impl_->tail_lamp) material = impl_->dark_tail_lamp;
+    }
 }
 
 }  // namespace flowscape

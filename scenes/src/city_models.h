@@ -58,6 +58,8 @@ class ActorLibrary {
             const std::vector<Vec3>& cameras);
   // The beams of a vehicle's head lamps (none for a body without them), for Scene::lamps.
   std::vector<Lamp> head_lamps(const Actor& vehicle, int actor_index) const;
+  // A parked vehicle's head and tail lamps the same glass, but dark at night.
+  void switch_off_lamps(Actor& vehicle) const;
 
  private:
   struct Impl;

@@ -121,6 +121,16 @@ TEST_CASE("a city's lamps and lit glass switch on after sunset and off by day") 
     CHECK(lamp_materials >= 3);  // street lamps, head and tail lamps
     CHECK(glowing == (night ? lamp_materials : 0));
     CHECK((city.scene.environment.lamp_level > 0) == night);
+    // parked vehicles keep their lamps dark
+    int parked = 0;
+    for (std::size_t a = 0; a < city.actors.size(); ++a) {
+      if (!city.actors[a].parked) continue;
+      ++parked;
+      for (const Part& part : city.scene.actors[a].parts)
+        for (std::uint16_t m : part.materials)
+          CHECK(city.scene.materials[m].kind != Material::Kind::Emissive);
+    }
+    CHECK(parked > 0);
     // street lamps along the roads and two beams per moving vehicle, on their actors
     on_rigid = 0;
     for (const Lamp& lamp : city.scene.lamps) on_rigid += lamp.actor >= 0;
