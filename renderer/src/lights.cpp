@@ -125,9 +125,63 @@ LampLights::Sample LampLights::sample(const Vec3& point, const Vec3& normal, dou
           lamp.intensity * (beam(lamp, -to_lamp / distance) / d2 / probability), total};
 }
 
+SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
+  if (!dome_) return;
+  const std::size_t cells = dome_->radiance.size();
+  std::vector<double> weights(cells);
+  double sum = 0;
+  for (std::size_t i = 0; i < cells; ++i) {
+    const Eigen::Vector3f& l = dome_->radiance[i];
+    weights[i] =
+        (0.2126 * l[0] + 0.7152 * l[1] + 0.0722 * l[2]) * cell_solid_angle(int(i / dome_->columns));
+    sum += weights[i];
+  }
+  // every cell kept possible (the bilinear lookup reaches into dark cells from bright neighbours)
+  const double floor = 1e-3 * sum / double(cells);
+  cumulative_.resize(cells);
+  double running = 0;
+  for (std::size_t i = 0; i < cells; ++i) cumulative_[i] = running += weights[i] + floor;
+  for (double& c : cumulative_) c /= running;
+  const Eigen::Vector3f level = dome_->horizontal_irradiance();
+  level_luminance_ = 0.2126 * level[0] + 0.7152 * level[1] + 0.0722 * level[2];
+}
+
+double SkySampler::cell_solid_angle(int row) const {
+  const double d_elevation = kPi / 2 / dome_->rows;
+  return 2 * kPi / dome_->columns *
+         (std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation));
+}
+
+Vec3 SkySampler::sample(Vec2 u) const {
+  const std::size_t cell = std::min<std::size_t>(
+      std::upper_bound(cumulative_.begin(), cumulative_.end(), u.x()) - cumulative_.begin(),
+      cumulative_.size() - 1);
+  const double lo = cell == 0 ? 0 : cumulative_[cell - 1];
+  const double across = std::clamp((u.x() - lo) / (cumulative_[cell] - lo), 0.0, 1.0);
+  const int row = int(cell / dome_->columns), column = int(cell % dome_->columns);
+  const double d_elevation = kPi / 2 / dome_->rows;
+  const double sin_lo = std::sin(row * d_elevation), sin_hi = std::sin((row + 1) * d_elevation);
+  const double z = sin_lo + u.y() * (sin_hi - sin_lo), r = std::sqrt(std::max(0.0, 1 - z * z));
+  const SinCos phi = sin_cos(2 * kPi * (column + across) / dome_->columns);
+  return {r * phi.cos, r * phi.sin, z};
+}
+
+double SkySampler::pdf(const Vec3& d) const {
+  if (!dome_ || d.z() < 0) return 0;
+  const int row =
+      std::min(dome_->rows - 1, int(std::asin(std::min(d.z(), 1.0)) / (kPi / 2) * dome_->rows));
+  double azimuth = std::atan2(d.y(), d.x());
+  if (azimuth < 0) azimuth += 2 * kPi;
+  const int column = std::min(dome_->columns - 1, int(azimuth / (2 * kPi) * dome_->columns));
+  const std::size_t cell = std::size_t(row) * dome_->columns + column;
+  const double p = cumulative_[cell] - (cell == 0 ? 0 : cumulative_[cell - 1]);
+  return p / cell_solid_angle(row);
+}
+
 Lights::Lights(const Scene& scene, double time)
     : environment(scene.environment),
       lamps(scene, time),
+      sky(scene.environment.sky_dome.get()),
       sun_frame(frame_around(environment.sun_direction)),
       sun_cos_radius(std::cos(environment.sun_angular_radius)),
       sun_irradiance(environment.sun_irradiance.cast<double>()),

@@ -46,6 +46,24 @@ class LampLights {
   std::vector<std::vector<int>> cells_;
 };
 
+// The sky dome as a light (only a scene with a SkyDome has one): a cell picked in proportion to
+// its luminance times its solid angle, a direction uniform over the cell's solid angle (pbrt's
+// piecewise-constant environment sampling, on the dome's own cells).
+class SkySampler {
+ public:
+  explicit SkySampler(const SkyDome* dome);
+  bool empty() const { return dome_ == nullptr; }
+  Vec3 sample(Vec2 u) const;
+  double pdf(const Vec3& d) const;                             // per steradian; 0 below the horizon
+  double level_luminance() const { return level_luminance_; }  // on a level surface
+
+ private:
+  double cell_solid_angle(int row) const;
+  const SkyDome* dome_;
+  std::vector<double> cumulative_;  // over the cells, row-major, ending at 1
+  double level_luminance_ = 0;
+};
+
 struct Lights {
   Lights(const Scene& scene, double time);
 
@@ -64,6 +82,7 @@ struct Lights {
 
   const Environment& environment;
   LampLights lamps;
+  SkySampler sky;
   Mat3 sun_frame;
   double sun_cos_radius;
   Rgb sun_irradiance, sun_disc_radiance, sky_mean;

@@ -51,6 +51,10 @@ struct PathState {
   // event the sun comes through next-event estimation only (no sun caustics: they would be rare,
   // huge fireflies at these sample counts).
   bool sun_visible = true;
+  // After a diffuse event that may have sampled the sky as a light: the chance it did and the
+  // normal the bounce was drawn about, for the MIS weight of the sky the bounce finds.
+  double sky_chance = 0;
+  Vec3 bounce_normal = Vec3::Zero();
 };
 
 double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
@@ -61,6 +65,7 @@ struct SunRay {
   BundleRay ray;
   Rgb light = Rgb::Zero();
   Layer layer = kOther;
+  double sky_chance = 0;  // how likely the event picked the sky: for a bounce's MIS weight
 };
 
 // Direct light from the sun on a diffuse surface (the sun is too small to hit by chance), seen
@@ -90,21 +95,55 @@ SunRay lamp_ray(const Lights& lights, const LampLights::Sample& lamp, const Surf
           layer};
 }
 
-// The sun or, once the lamps are on, a lamp (picked with u.x): the sun with the probability of its
-// share of the light on the surface (its irradiance on it against the lamps' weights), chosen with
-// u.y, which the sun's disc sample then reuses.
+// The MIS weight (balance heuristic) of a strategy of density `own` against one of `other`.
+double balance(double own, double other) { return own / (own + other); }
+
+// Direct light from the sky dome on a diffuse surface, a direction drawn by SkySampler (chosen with
+// probability `chance`), weighted against the cosine bounce about `bounce_normal` that may find the
+// same sky. Into the indirect layer, where the sky's light always went.
+SunRay sky_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
+               Vec2 u, double chance, const Vec3& bounce_normal, Layer layer) {
+  const Vec3 dir = lights.sky.sample(u);
+  const double cos_n = dir.dot(s.normal);
+  if (cos_n <= 0 || dir.dot(s.geometric) <= 0) return {};
+  const double light_pdf = chance * lights.sky.pdf(dir);
+  const double bounce_pdf = std::max(0.0, dir.dot(bounce_normal)) / kPi;
+  const double fog = lights.foggy() ? std::exp(-lights.optical_depth(origin, dir, kFar)) : 1;
+  const Rgb light = throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sky_radiance(dir)) *
+                    (cos_n / kPi * fog / (light_pdf + bounce_pdf));
+  return {{origin, dir, true}, light, layer == kDirect ? kIndirect : layer};
+}
+
+// One light for a diffuse event: the sun (the moon), a lamp (picked with u.x) or the sky dome, each
+// with the probability of its share of the light on the surface, chosen with u.y, which the sun's
+// and the sky's samples then reuse. The sky is sampled only where the sun does not shine on the
+// surface (dusk, night, clouds over the sun, faces turned from it): under the sun its shadow rays
+// stay the sun's, as before.
 SunRay light_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
-                 Vec2 u, Layer layer) {
-  if (lights.lamps.empty()) return sun_ray(lights, s, origin, throughput, u, layer);
-  const LampLights::Sample lamp = lights.lamps.sample(origin, s.normal, u.x());
+                 Vec2 u, const Vec3& bounce_normal, Layer layer) {
   const double sun_share = luminance(lights.sun_irradiance) *
                            std::max(0.0, s.normal.dot(lights.environment.sun_direction));
-  const double sun_chance = sun_share / std::max(sun_share + lamp.total, 1e-300);
+  const bool sky = !lights.sky.empty() && sun_share == 0;
+  if (lights.lamps.empty() && !sky) return sun_ray(lights, s, origin, throughput, u, layer);
+  const LampLights::Sample lamp =
+      lights.lamps.empty() ? LampLights::Sample{} : lights.lamps.sample(origin, s.normal, u.x());
+  const double sky_share = sky ? lights.sky.level_luminance() * (1 + s.normal.z()) / 2 : 0;
+  const double total = sun_share + lamp.total + sky_share;
+  if (!(total > 0)) return {};
+  const double sun_chance = sun_share / total, sky_chance = sky_share / total;
   if (u.y() < sun_chance) {
     u.y() /= sun_chance;
     return sun_ray(lights, s, origin, throughput / sun_chance, u, layer);
   }
-  return lamp_ray(lights, lamp, s, origin, throughput / (1 - sun_chance), layer);
+  SunRay ray;
+  if (u.y() >= 1 - sky_chance) {
+    u.y() = (u.y() - (1 - sky_chance)) / sky_chance;
+    ray = sky_ray(lights, s, origin, throughput, u, sky_chance, bounce_normal, layer);
+  } else {
+    ray = lamp_ray(lights, lamp, s, origin, throughput / (1 - sun_chance - sky_chance), layer);
+  }
+  ray.sky_chance = sky_chance;  // whatever was picked: a bounce's sky is weighted by it
+  return ray;
 }
 
 bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the path survives
@@ -136,7 +175,8 @@ void cross_fog(const Lights& lights, double distance, PathState& path) {
 // direction.
 void scatter_diffusely(const Lights& lights, const Surface& s, const Vec3& above, Vec2 light_sample,
                        Vec2 lobe_sample, PathState& path, SunRay& sun) {
-  sun = light_ray(lights, s, above, path.throughput, light_sample, path.layer);
+  sun = light_ray(lights, s, above, path.throughput, light_sample, s.normal, path.layer);
+  path.sky_chance = sun.sky_chance, path.bounce_normal = s.normal;
   path.throughput = path.throughput.cwiseProduct(s.albedo);
   path.origin = above, path.dir = cosine_direction(s.normal, lobe_sample);
   path.sun_visible = false, path.spread = kScatteredSpread, path.textured = false;
@@ -154,8 +194,14 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
   cross_fog(lights, hit.found ? hit.distance : kFar, path);
   if (!hit.found) {
-    path.light[path.layer] += throughput.cwiseProduct(
-        lights.sky_radiance(dir) + (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
+    // the sky a diffuse bounce finds, weighted against the sky sampled as a light there
+    const double weight = path.sky_chance > 0
+                              ? balance(std::max(0.0, dir.dot(path.bounce_normal)) / kPi,
+                                        path.sky_chance * lights.sky.pdf(dir))
+                              : 1;
+    path.light[path.layer] +=
+        throughput.cwiseProduct(lights.sky_radiance(dir) * weight +
+                                (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
     return false;
   }
   path.width += path.spread * hit.distance;
@@ -199,7 +245,7 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   // does next; half the paths then take a glossy surface's coat, half its base.
   if (first && reflects_diffusely) {
     const Rgb diffuse_part = throughput * (1 - fresnel);
-    sun = light_ray(lights, s, above, diffuse_part, light_sample, kDirect);
+    sun = light_ray(lights, s, above, diffuse_part, light_sample, s.smooth, kDirect);
     path.albedo += diffuse_part.cwiseProduct(s.albedo);
   }
   bool diffuse = m.kind == Material::Kind::Diffuse, transmitted = false;
@@ -216,9 +262,11 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
     // everywhere else stays smooth for the denoiser
     origin = above, dir = cosine_direction(s.smooth, lobe_sample);
     path.sun_visible = false, path.spread = kScatteredSpread, path.textured = false;
+    path.sky_chance = sun.sky_chance, path.bounce_normal = s.smooth;
   } else if (diffuse) {
     scatter_diffusely(lights, s, above, light_sample, lobe_sample, path, sun);
   } else {
+    path.sky_chance = 0;  // a specular event: the sky it finds is not sampled as a light
     if (first) path.layer = kSpecular;
     if (m.kind == Material::Kind::Glass) {
       const double eta = s.front ? 1 / 1.5 : 1.5;

@@ -373,3 +373,28 @@ TEST_CASE("lamps light the road by the inverse-square law within their beams, an
     }
   CHECK(checked > 300);
 }
+
+TEST_CASE(
+    "a plane under a sky dome has radiance albedo x its irradiance / pi, the sky sampled as a "
+    "light") {
+  // L(elevation) = 1 + 4 sin^2: irradiance on a level plane 2 pi int (1 + 4 sin^2 e) sin e cos e de
+  // = 3 pi, so the plane's radiance is 3 x albedo
+  Scene scene = road_under_black_sky({0.5f, 0.4f, 0.3f});
+  scene.environment.sun_irradiance = Eigen::Vector3f::Zero();
+  auto dome = std::make_shared<SkyDome>();
+  dome->rows = 90, dome->columns = 180;
+  for (int r = 0; r < dome->rows; ++r)
+    for (int c = 0; c < dome->columns; ++c) {
+      const double z = dome->direction(r, c).z();
+      dome->radiance.push_back(Eigen::Vector3f::Constant(float(1 + 4 * z * z)));
+    }
+  scene.environment.sky_dome = dome;
+  const Image<float> down =
+      Renderer(scene).color(Projection::cube_face(Face::Down, 16), FramePair{}, {64, 1, 5});
+  for (int c = 0; c < 3; ++c) {
+    double mean = 0;
+    for (std::size_t i = 0; i < down.pixel_count(); ++i) mean += down.data[3 * i + c];
+    mean /= double(down.pixel_count());
+    CHECK(mean == Approx(3 * scene.materials[0].albedo[c]).epsilon(0.01));
+  }
+}
