@@ -18,8 +18,6 @@ constexpr double kLampCell = 16;  // metres
 constexpr double kLampFloor = 1e-6, kLampReach = 80;
 constexpr std::size_t kMaxLampCells = 1 << 22;
 
-double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
 }  // namespace
 
 LampLights::LampLights(const Scene& scene, double time) {
@@ -130,11 +128,11 @@ SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
   const std::size_t cells = dome_->radiance.size();
   std::vector<double> weights(cells);
   double sum = 0;
-  for (std::size_t i = 0; i < cells; ++i) {
-    const Eigen::Vector3f& l = dome_->radiance[i];
-    weights[i] =
-        (0.2126 * l[0] + 0.7152 * l[1] + 0.0722 * l[2]) * cell_solid_angle(int(i / dome_->columns));
-    sum += weights[i];
+  for (int row = 0; row < dome_->rows; ++row) {
+    const double solid_angle = cell_solid_angle(row);
+    for (std::size_t i = std::size_t(row) * dome_->columns;
+         i < std::size_t(row + 1) * dome_->columns; ++i)
+      sum += weights[i] = luminance(dome_->radiance[i].cast<double>()) * solid_angle;
   }
   // every cell kept possible (the bilinear lookup reaches into dark cells from bright neighbours)
   const double floor = 1e-3 * sum / double(cells);
@@ -142,8 +140,7 @@ SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
   double running = 0;
   for (std::size_t i = 0; i < cells; ++i) cumulative_[i] = running += weights[i] + floor;
   for (double& c : cumulative_) c /= running;
-  const Eigen::Vector3f level = dome_->horizontal_irradiance();
-  level_luminance_ = 0.2126 * level[0] + 0.7152 * level[1] + 0.0722 * level[2];
+  level_luminance_ = luminance(dome_->horizontal_irradiance().cast<double>());
 }
 
 double SkySampler::cell_solid_angle(int row) const {

@@ -11,6 +11,8 @@ namespace flowscape {
 
 using Rgb = Eigen::Vector3d;
 
+inline double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
+
 // The lamps of a frame (Scene::lamps) posed at its time, and one picked for a point: a grid of
 // 16 m cells over the ground lists the lamps whose light reaches each cell above a floor; a point
 // picks one of its cell's lamps in proportion to the irradiance it would give there (intensity x

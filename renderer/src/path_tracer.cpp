@@ -57,8 +57,6 @@ struct PathState {
   Vec3 bounce_normal = Vec3::Zero();
 };
 
-double luminance(const Rgb& c) { return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]; }
-
 // Next-event estimation: a shadow ray towards the sun (the moon at night) or a lamp, and the light
 // it brings if unblocked.
 struct SunRay {

@@ -504,10 +504,6 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
                             user_model_of(models, ActorKind::Pedestrian))},
         {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed});
   }
-  // the moving vehicles' head lamps (walkers and riders have none)
-  for (std::size_t a = 0; a < city.scene.actors.size(); ++a)
-    for (const Lamp& beam : library.head_lamps(city.scene.actors[a], int(a)))
-      city.scene.lamps.push_back(beam);
   for (const Pose& pose : parked) {
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
     record.parked = true;
@@ -516,17 +512,20 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     for (std::size_t a = first; a < city.scene.actors.size(); ++a)
       library.switch_off_lamps(city.scene.actors[a]);
   }
-  if (!config.draw_ego) return;
-  ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};
-  record.ego = true;
-  city.ego_instance = record.instance;
-  add({library.ego(record.instance, city.rig_track(),
-                   std::make_shared<const Track>(traffic.tracks.vehicles[0]), city.mount.height,
-                   config.ego_cameras)},
-      record);
-  const int ego = int(city.scene.actors.size()) - 1;
-  for (const Lamp& beam : library.head_lamps(city.scene.actors[ego], ego))
-    city.scene.lamps.push_back(beam);
+  if (config.draw_ego) {
+    ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};
+    record.ego = true;
+    city.ego_instance = record.instance;
+    add({library.ego(record.instance, city.rig_track(),
+                     std::make_shared<const Track>(traffic.tracks.vehicles[0]), city.mount.height,
+                     config.ego_cameras)},
+        record);
+  }
+  // the head lamps of every vehicle but the parked ones (walkers and riders have none)
+  for (std::size_t a = 0; a < city.scene.actors.size(); ++a)
+    if (!city.actors[a].parked)
+      for (const Lamp& beam : library.head_lamps(city.scene.actors[a], int(a)))
+        city.scene.lamps.push_back(beam);
 }
 
 }  // namespace
