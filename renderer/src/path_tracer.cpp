@@ -230,8 +230,9 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   if (m.kind == Material::Kind::Emissive) {
     // a glow-only body (a lamp's, a lit window): seen directly and in mirrors; a lamp's light on
     // surfaces comes from its point source (Scene::lamps), as the sun's does
-    if (path.sun_visible || !m.glow_only)
-      path.light[path.layer] += throughput.cwiseProduct(m.emission.cast<double>());
+    const Rgb glow = m.night_pattern ? Rgb(m.emission.cast<double>().cwiseProduct(s.albedo))
+                                     : Rgb(m.emission.cast<double>());
+    if (path.sun_visible || !m.glow_only) path.light[path.layer] += throughput.cwiseProduct(glow);
     return false;
   }
   const Vec3 above = s.position + offset * s.geometric, below = s.position - offset * s.geometric;

@@ -332,20 +332,28 @@ Material sign_face(std::uint64_t seed) {
   });
 }
 
-Material signal_head() {
-  return make(
-      Material::Kind::Glossy, {0.04f, 0.04f, 0.04f}, 0.2f,
-      [](const TexturePoint& at, const SurfaceLook& base) {
-        // three lamps down the housing's faces (uv in metres from its centre)
-        const double fp = at.footprint;
-        const Rgb lamps[3] = {{0.6f, 0.05f, 0.03f}, {0.6f, 0.4f, 0.03f}, {0.05f, 0.5f, 0.2f}};
-        Rgb colour = base.albedo;
-        for (int k = 0; k < 3; ++k) {
-          const double r = (at.uv - Vec2(0, 0.28 * (1 - k))).norm();
-          colour = mix(colour, lamps[k], line_coverage(r, 0.09, fp));
-        }
-        return SurfaceLook{colour, base.roughness, Vec2::Zero()};
+Material signal_head(int lit) {
+  // three lamps down the housing's faces (uv in metres from its centre)
+  const auto lamp_cover = [](const TexturePoint& at, int k) {
+    return line_coverage((at.uv - Vec2(0, 0.28 * (1 - k))).norm(), 0.09, at.footprint);
+  };
+  Material m =
+      make(Material::Kind::Glossy, {0.04f, 0.04f, 0.04f}, 0.2f,
+           [lamp_cover](const TexturePoint& at, const SurfaceLook& base) {
+             const Rgb lamps[3] = {{0.6f, 0.05f, 0.03f}, {0.6f, 0.4f, 0.03f}, {0.05f, 0.5f, 0.2f}};
+             Rgb colour = base.albedo;
+             for (int k = 0; k < 3; ++k) colour = mix(colour, lamps[k], lamp_cover(at, k));
+             return SurfaceLook{colour, base.roughness, Vec2::Zero()};
+           });
+  // 150 cd/m^2 over the lit lens: a night exposure clips its own channel, not the others (an LED
+  // signal's 5000 would show white, where photos of streets at night show red and green)
+  const Rgb glows[3] = {{1.0f, 0.06f, 0.02f}, {1.0f, 0.55f, 0.03f}, {0.02f, 1.0f, 0.3f}};
+  m.night_emission = Rgb(1.5e-3f, 1.5e-3f, 1.5e-3f), m.glow_only = true;
+  m.night_pattern = std::make_shared<const Pattern>(
+      [lamp_cover, lit, glow = glows[lit]](const TexturePoint& at, const SurfaceLook& base) {
+        return SurfaceLook{glow * float(lamp_cover(at, lit)), base.roughness, Vec2::Zero()};
       });
+  return m;
 }
 
 Material timber(std::uint64_t seed) {

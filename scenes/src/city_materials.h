@@ -31,8 +31,10 @@ Material bark(std::uint64_t seed);
 Material leaves(std::uint64_t seed);
 Material painted_metal(std::uint64_t seed, const Rgb& colour);  // poles, rails, housings
 Material sign_face(std::uint64_t seed);                         // a round traffic sign
-Material signal_head();                                         // a traffic light's lamps
-Material timber(std::uint64_t seed);                            // fences, piers
+// A traffic light's housing with its red, amber and green lamps; after sunset lamp `lit` (0 red,
+// 1 amber, 2 green) glows.
+Material signal_head(int lit);
+Material timber(std::uint64_t seed);  // fences, piers
 Material water();
 
 // Vehicles and people (uv and positions in the actor's own frame).

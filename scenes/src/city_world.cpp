@@ -17,7 +17,7 @@ using Footprint = std::array<V2, 4>;
 
 struct Palette {
   std::uint16_t asphalt, white, yellow, pavement, curb, grass, dirt, concrete, water, glass, bark,
-      metal, sign, signal, timber, rail, tank, lamp, lit_shop;
+      metal, sign, signal_stop, signal_go, timber, rail, tank, lamp, lit_shop;
   std::vector<std::uint16_t> lit_windows;  // warm, cool and dim rooms
   std::vector<std::uint16_t> leaves;       // a few tree species
 };
@@ -42,7 +42,7 @@ Palette make_palette(Scene& scene, std::uint64_t seed, const Style& style) {
   p.bark = add(cm::bark(next()));
   p.metal = add(cm::painted_metal(next(), {0.3f, 0.32f, 0.3f}));
   p.sign = add(cm::sign_face(next()));
-  p.signal = add(cm::signal_head());
+  p.signal_stop = add(cm::signal_head(0)), p.signal_go = add(cm::signal_head(2));
   p.timber = add(cm::timber(next()));
   p.rail = add(cm::painted_metal(next(), {0.4f, 0.33f, 0.27f}));
   p.tank = add(cm::painted_metal(next(), {0.75f, 0.75f, 0.72f}));
@@ -348,7 +348,7 @@ class WorldBuilder {
       const V2 sign(corner & 1 ? 1 : -1, corner & 2 ? 1 : -1);
       const V2 spot = centre + V2(sign.x() * (hx + 0.3), sign.y() * (hy + 0.3));
       if (lights)
-        traffic_light(spot, sign);
+        traffic_light(spot, sign, n % 2 == 0);
       else if (random_.chance(0.5))
         traffic_sign(spot);
     }
@@ -358,12 +358,14 @@ class WorldBuilder {
     return Pose(Eigen::Translation3d(at(p, lift)) * Eigen::AngleAxisd(yaw, V3::UnitZ()));
   }
 
-  void traffic_light(const V2& spot, const V2& sign) {
+  // At night the heads facing the road along x show green when `x_goes`, the others red.
+  void traffic_light(const V2& spot, const V2& sign, bool x_goes) {
     add_cylinder(mesh_, upright(spot, kCurb), 0.09, 4.2, {C::Pole, palette_.metal}, 8);
     for (int k = 0; k < 2; ++k) {  // one head facing each road at this corner
       const V2 face = k == 0 ? V2(sign.x(), 0) : V2(0, sign.y());
+      const bool go = (k == 0) == x_goes;
       add_oriented_box(mesh_, upright(spot + 0.3 * face, kCurb + 3.7), V3(0.15, 0.15, 0.45),
-                       {C::TrafficLight, palette_.signal});
+                       {C::TrafficLight, go ? palette_.signal_go : palette_.signal_stop});
     }
   }
 

@@ -207,3 +207,38 @@ TEST_CASE("an asset pack's models carry their licence into meta.json and the car
                        Catch::Contains("| torcs/baja-bug | Free Art License 1.3 |") &&
                        Catch::Contains("also under that model's licence"));
 }
+
+TEST_CASE("the final pass leaves the clean colour and the ground truth as they were, and resumes") {
+  TempDir clean_dir, final_dir;
+  ReleaseConfig config = tiny_release_config(1, 4);
+  config.spp = 4;
+  write(config, clean_dir.path);
+  config.outputs.push_back("final");
+  write(config, final_dir.path);
+  const fs::path clean = sequence_dir(clean_dir.path, "map00_seq00"),
+                 with_final = sequence_dir(final_dir.path, "map00_seq00");
+  int compared = 0;
+  for (const fs::path& file : release_layout(tiny_release_config(1, 4)).frame_files(2, 4)) {
+    CHECK(file_bytes(with_final / file) == file_bytes(clean / file));
+    ++compared;
+  }
+  CHECK(compared > 20);
+  const fs::path final_erp = with_final / frame_file(output_kind("final"), std::nullopt, 2);
+  const fs::path final_face = with_final / frame_file(output_kind("final"), Face::Front, 2);
+  REQUIRE(fs::exists(final_erp));
+  REQUIRE(fs::exists(final_face));
+  CHECK(file_bytes(final_erp) !=
+        file_bytes(clean / frame_file(output_kind("color"), std::nullopt, 2)));
+  const SequenceMeta meta = read_meta(with_final);
+  REQUIRE(meta.final.at("exposures").size() == 4);
+  CHECK(meta.final.at("shutter_angle") == 180);
+  CHECK(meta.final.at("exposures")[3].at("adapted_key").get<double>() > 0);
+  // a resumed sequence: the same final bytes and exposures as one made in one go
+  const std::string final_bytes = file_bytes(final_erp);
+  const nlohmann::json exposures = meta.final.at("exposures");
+  fs::remove(final_erp);
+  fs::remove(with_final / frame_file(output_kind("final"), std::nullopt, 3));
+  write(config, final_dir.path);
+  CHECK(file_bytes(final_erp) == final_bytes);
+  CHECK(read_meta(with_final).final.at("exposures") == exposures);
+}

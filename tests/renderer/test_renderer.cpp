@@ -8,6 +8,7 @@
 #include "flowscape/formats/srgb.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/test_scenes.h"
+#include "flowscape/scenes/texture.h"
 #include "flowscape/stitcher/stitch.h"
 #include "independent_math.h"
 #include "warp_errors.h"
@@ -372,6 +373,23 @@ TEST_CASE("lamps light the road by the inverse-square law within their beams, an
       for (int c = 0; c < 3; ++c) CHECK(on.pixel(x, y)[c] == Approx(expected[c]).epsilon(0.02));
     }
   CHECK(checked > 300);
+}
+
+TEST_CASE("an emitter glows with its emission, times its night pattern's colour when it has one") {
+  Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
+  Material& m = scene.materials[0];
+  m.kind = Material::Kind::Emissive, m.emission = {2, 2, 2};
+  m.pattern = std::make_shared<const Pattern>([](const TexturePoint&, const SurfaceLook& base) {
+    return SurfaceLook{Eigen::Vector3f(0.75f, 0.25f, 0), base.roughness, Vec2::Zero()};
+  });
+  const Projection down = Projection::cube_face(Face::Down, 8);
+  const auto centre = [&] {
+    const Image<float> image = Renderer(scene).color(down, FramePair{}, {2, 1, 0});
+    return Eigen::Vector3f(image.pixel(4, 4)[0], image.pixel(4, 4)[1], image.pixel(4, 4)[2]);
+  };
+  CHECK(centre().isApprox(Eigen::Vector3f(2, 2, 2)));  // a day pattern does not dim a lit window
+  m.night_pattern = m.pattern;                         // a traffic light's lit lamp
+  CHECK(centre().isApprox(Eigen::Vector3f(1.5f, 0.5f, 0)));
 }
 
 TEST_CASE(

@@ -1,12 +1,17 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <set>
 
+#include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/test_scenes.h"
+#include "flowscape/scenes/texture.h"
 #include "flowscape/weather/weather.h"
 #include "independent_math.h"
+#include "temp_dir.h"
+#include "weather/synthetic_sky.h"
 
 using namespace flowscape;
 
@@ -103,6 +108,24 @@ TEST_CASE("the four weathers and the times of day change colour only and each in
   CHECK(rain.truth.semantic.data == dry.truth.semantic.data);
 }
 
+TEST_CASE("a real HDR sky changes colour only") {
+  TempDir maps;
+  setenv("FLOWSCAPE_SKY_MAPS", maps.path.c_str(), 1);
+  test::SyntheticSky sky;
+  sky.sun = Vec3(0.5, -0.3, 0.6).normalized(), sky.sun_peak = 3000;
+  write_image(maps.path / "sky.exr", test::synthetic_sky(sky));
+  const Weather sunny = weather_preset("sunny"), mapped = under_sky(sunny, "sky", 2);
+  REQUIRE(mapped.sky_map == "sky");
+  const WeatherFrame physical = render_city(sunny), real = render_city(mapped);
+  unsetenv("FLOWSCAPE_SKY_MAPS");
+  CHECK(real.truth.flow.data == physical.truth.flow.data);
+  CHECK(real.truth.semantic.data == physical.truth.semantic.data);
+  CHECK(real.truth.instance.data == physical.truth.instance.data);
+  CHECK(real.truth.depth.data == physical.truth.depth.data);
+  CHECK(real.truth.valid.data == physical.truth.valid.data);
+  CHECK(real.color.data != physical.color.data);
+}
+
 TEST_CASE("a city's lamps and lit glass switch on after sunset and off by day") {
   CityConfig config;
   config.map = 0, config.seed = 2, config.vehicles = 6, config.pedestrians = 0;
@@ -121,6 +144,27 @@ TEST_CASE("a city's lamps and lit glass switch on after sunset and off by day") 
     CHECK(lamp_materials >= 3);  // street lamps, head and tail lamps
     CHECK(glowing == (night ? lamp_materials : 0));
     CHECK((city.scene.environment.lamp_level > 0) == night);
+    // the traffic lights: red for one road and green for the other, only their lit lamp
+    // glowing (the night pattern at the red lamp's centre, uv (0, 0.28), and the green's, (0,
+    // -0.28))
+    std::set<std::uint16_t> heads;
+    for (std::size_t t = 0; t < city.scene.world.triangles.size(); ++t)
+      if (city.scene.world.classes[t] == SemanticClass::TrafficLight)
+        heads.insert(city.scene.world.materials[t]);
+    int red = 0, green = 0;
+    for (std::uint16_t index : heads) {
+      const Material& m = city.scene.materials[index];
+      REQUIRE(m.night_pattern);
+      CHECK((m.kind == Material::Kind::Emissive && m.pattern == m.night_pattern) == night);
+      const auto glow = [&](double v) {
+        return (*m.night_pattern)({Vec2(0, v), Vec3::Zero(), 1e-3}, {m.albedo, m.roughness}).albedo;
+      };
+      CHECK(glow(0).isZero());  // amber is dark
+      red += glow(0.28)[0] > 0.5 && glow(-0.28).isZero();
+      green += glow(-0.28)[1] > 0.5 && glow(0.28).isZero();
+    }
+    CHECK(red == 1);
+    CHECK(green == 1);
     // parked vehicles keep their lamps dark
     int parked = 0;
     for (std::size_t a = 0; a < city.actors.size(); ++a) {

@@ -6,6 +6,7 @@
 
 #include "atmosphere.h"
 #include "flowscape/scenes/texture.h"
+#include "sky_map.h"
 
 namespace flowscape::sky {
 namespace {
@@ -194,6 +195,18 @@ double exposure_for(double level_luminance, bool lamps_on) {
   return std::max(1.8, 4 * std::pow(measured / reference, 0.2)) / measured;
 }
 
+// A map's sky and sun in the physical sky's units (a map's own are arbitrary): scaled so that its
+// light on level ground is the clear sky's under the same sun, laid over the dome; returns its
+// sun's irradiance.
+Spectrum sun_of_map(const SkyMap& map, double rotation_degrees, const Spectrum& clear_level,
+                    SkyDome& dome) {
+  const Spectrum map_level = map.sun.irradiance * std::max(map.sun.direction.z(), 0.0) +
+                             horizontal_irradiance(map.radiance);
+  const double scale = luminance(clear_level) / std::max(luminance(map_level), 1e-12);
+  overlay_sky_map(map, rotation_degrees * kPi / 180, scale, dome);
+  return map.sun.irradiance * scale;
+}
+
 }  // namespace
 
 void set_physical_sky(const Weather& w, Environment& e) {
@@ -233,9 +246,14 @@ void set_physical_sky(const Weather& w, Environment& e) {
       dome->radiance[std::size_t(row) * kDomeColumns + column] =
           (haze * cloud + (1 - haze) * open).matrix().cast<float>();
     }
+  const Spectrum clear_sun = white * atmosphere.transmittance(kObserverAltitude, sun.z());
+  const std::shared_ptr<const SkyMap> map =
+      w.sky_map.empty() ? nullptr : fetched_sky_map(w.sky_map);
   const double sun_depth = sun.z() > 0 ? clouds.depth(sun, e.sun_angular_radius) : 0;
   const Spectrum sun_ground =
-      white * atmosphere.transmittance(kObserverAltitude, sun.z()) * std::exp(-sun_depth);
+      map ? sun_of_map(*map, w.sky_map_rotation, clear_sun * std::max(sun.z(), 0.0) + sky_above,
+                       *dome)
+          : Spectrum(clear_sun * std::exp(-sun_depth));
   const Spectrum level = level_light(sun_ground, sun, *dome);
   const double exposure = exposure_for(luminance(level), lamps_on);
   for (Rgb& cell : dome->radiance) cell *= float(exposure);

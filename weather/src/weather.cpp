@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
+#include "flowscape/core/files.h"
 #include "flowscape/core/random.h"
 #include "flowscape/scenes/shapes.h"
 #include "sky.h"
+#include "sky_map.h"
 
 namespace flowscape {
 namespace {
@@ -18,8 +21,11 @@ using Rgb = Eigen::Vector3f;
 Weather make(const char* name, double elevation, double azimuth, double turbidity,
              double cloudiness, double fog, double rain, double wetness, double puddles,
              double wind) {
-  return {name, "day", elevation, azimuth, turbidity, cloudiness,
-          fog,  25,    rain,      wetness, puddles,   wind};
+  Weather w;
+  w.preset = name, w.sun_elevation = elevation, w.sun_azimuth = azimuth, w.turbidity = turbidity;
+  w.cloudiness = cloudiness, w.fog_density = fog, w.precipitation = rain, w.wetness = wetness;
+  w.puddles = puddles, w.wind = wind;
+  return w;
 }
 
 const std::vector<Weather>& presets() {
@@ -192,6 +198,57 @@ void validate(const Weather& w) {
   require_range(w.puddles, 0, 1, "puddles");
   require_range(w.wind, 0, 1, "wind");
   require_range(w.cloud_shift, 0, 1000, "cloud_shift");
+  require_range(w.sky_map_rotation, 0, 360, "sky_map_rotation");
+  if (!w.sky_map.empty()) validate_sky(w.sky_map);
+}
+
+std::vector<std::string> sky_map_names() { return {"sky", "park", "sunrise", "dawn", "venice"}; }
+
+std::filesystem::path sky_map_directory() {
+  return cache_directory("FLOWSCAPE_SKY_MAPS", "pmndrs-assets-1.7.0");
+}
+
+void validate_sky(const std::string& sky) {
+  const std::vector<std::string> maps = sky_map_names();
+  if (sky == "physical" || std::find(maps.begin(), maps.end(), sky) != maps.end()) return;
+  std::string known = "physical";
+  for (const std::string& m : maps) known += ", " + m;
+  throw std::invalid_argument("unknown sky \"" + sky + "\" (" + known + ")");
+}
+
+Weather under_sky(Weather w, const std::string& sky, std::uint64_t seed) {
+  validate_sky(sky);
+  if (sky == "physical") return w;
+  const std::shared_ptr<const sky::SkyMap> map = sky::fetched_sky_map(sky);
+  if (!map) return w;
+  Random random(seed * 0x2545f4914f6cdd1dull + 0x1b873593a5b4c2e1ull);
+  w.sky_map = sky, w.sky_map_rotation = std::floor(random.uniform(0, 360));
+  w.cloudiness = 0;  // the map shows the clouds; the physical sky under its horizon line is clear
+  const Vec3& sun = map->sun.direction;
+  w.sun_elevation = std::asin(std::clamp(sun.z(), -1.0, 1.0)) * 180 / kPi;
+  w.sun_azimuth =
+      std::fmod(std::atan2(sun.y(), sun.x()) * 180 / kPi + w.sky_map_rotation + 360, 360.0);
+  char elevation[32];
+  std::snprintf(elevation, sizeof elevation, "%.1f", w.sun_elevation);
+  w.time_of_day = elevation;
+  return w;
+}
+
+void check_sky_resolution(const std::string& sky, double pixels_per_radian) {
+  validate_sky(sky);
+  const std::shared_ptr<const sky::SkyMap> map =
+      sky == "physical" ? nullptr : sky::fetched_sky_map(sky);
+  if (!map) return;
+  const double map_pixels_per_radian = map->radiance.width / (2 * kPi);
+  if (pixels_per_radian <= 2 * map_pixels_per_radian * (1 + 1e-9)) return;
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "sky map \"%s\" is %d x %d (%.1f pixels per radian): too small for images of %.1f "
+                "pixels per radian (a map may be magnified at most 2x); render smaller images or "
+                "use the physical sky",
+                sky.c_str(), map->radiance.width, map->radiance.height, map_pixels_per_radian,
+                pixels_per_radian);
+  throw std::invalid_argument(text);
 }
 
 std::vector<std::string> named_times_of_day() { return {"day", "dawn", "dusk", "night"}; }
@@ -259,6 +316,7 @@ void for_each_number(W& w, Visit&& visit) {
 nlohmann::json to_json(const Weather& w) {
   nlohmann::json j = {{"preset", w.preset}, {"time_of_day", w.time_of_day}};
   for_each_number(w, [&](const char* key, double value) { j[key] = value; });
+  if (!w.sky_map.empty()) j["sky_map"] = w.sky_map, j["sky_map_rotation"] = w.sky_map_rotation;
   return j;
 }
 
@@ -267,6 +325,8 @@ Weather weather_from_json(const nlohmann::json& j) {
   try {
     w = weather_preset(j.at("preset").get<std::string>());
     w.time_of_day = j.value("time_of_day", std::string("day"));
+    w.sky_map = j.value("sky_map", std::string());
+    w.sky_map_rotation = j.value("sky_map_rotation", 0.0);
     for_each_number(w, [&](const char* key, double& field) {
       if (j.contains(key)) field = j.at(key).get<double>();
     });
@@ -295,9 +355,11 @@ namespace {
 void switch_lamps(Scene& scene) {
   const float level = float(scene.environment.lamp_level);
   if (level <= 0) return;
-  for (Material& m : scene.materials)
-    if (!m.night_emission.isZero())
-      m.kind = Material::Kind::Emissive, m.emission = m.night_emission * level;
+  for (Material& m : scene.materials) {
+    if (m.night_emission.isZero()) continue;
+    m.kind = Material::Kind::Emissive, m.emission = m.night_emission * level;
+    if (m.night_pattern) m.pattern = m.night_pattern;
+  }
 }
 
 }  // namespace

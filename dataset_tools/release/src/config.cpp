@@ -29,6 +29,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
   visit("weathers", c.weathers), visit("times_of_day", c.times_of_day);
+  visit("skies", c.skies);
   visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
   visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
   visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
@@ -36,6 +37,9 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
   visit("asset_packs", c.asset_packs);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
+  visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
+  visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
+  visit("vignetting", c.vignetting);
 }
 
 template <class T>
@@ -74,6 +78,11 @@ void validate(const ReleaseConfig& c) {
   for (const std::string& w : c.weathers) weather_preset(w);
   require(!c.times_of_day.empty(), "times_of_day must not be empty");
   for (const std::string& t : c.times_of_day) validate_time_of_day(t);
+  require(!c.skies.empty(), "skies must not be empty");
+  require(c.shutter_angle >= 1 && c.shutter_angle <= 360, "shutter_angle must be in 1..360");
+  require(c.pixel_pitch >= 0.5 && c.pixel_pitch <= 50, "pixel_pitch must be in 0.5..50");
+  require(c.lens_glare >= 0 && c.lens_glare <= 0.5, "lens_glare must be in 0..0.5");
+  for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");
   require(c.turn_share >= 0 && c.turn_share <= 1, "turn_share must be in 0..1");
@@ -238,6 +247,11 @@ std::map<std::string, std::string> parse_models(const std::vector<std::string>& 
   return models;
 }
 
+void check_sky_resolution(const ReleaseConfig& c) {
+  const double erp = c.height / kPi, faces = c.cube ? c.face_size / 2.0 : 0;
+  for (const std::string& sky : c.skies) check_sky_resolution(sky, std::max(erp, faces));
+}
+
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
   std::vector<SequencePlan> plans;
   for (int m = 0; m < c.maps; ++m)
@@ -246,8 +260,8 @@ std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
       const bool turns = c.ego_routes == "mix" && std::floor((number + 1) * c.turn_share) >
                                                       std::floor(number * c.turn_share);
       plans.push_back({sequence_name(m, s), m, s, number, c.weathers[s % c.weathers.size()],
-                       c.times_of_day[number % c.times_of_day.size()], derived_seed(c.seed, m, s),
-                       turns});
+                       c.times_of_day[number % c.times_of_day.size()],
+                       c.skies[number % c.skies.size()], derived_seed(c.seed, m, s), turns});
     }
   return plans;
 }

@@ -24,11 +24,11 @@ constexpr const char* kCardFile = "README.md";
 constexpr const char* kStatisticsFigure = "statistics.svg";
 
 void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
-  std::map<std::string, int> per_weather, per_time;
+  std::map<std::string, int> per_weather, per_time, per_sky;
   std::map<int, int> per_map;
   const std::vector<SequencePlan> plans = plan_sequences(c);
   for (const SequencePlan& p : plans)
-    ++per_weather[p.weather], ++per_time[p.time_of_day], ++per_map[p.map];
+    ++per_weather[p.weather], ++per_time[p.time_of_day], ++per_sky[p.sky], ++per_map[p.map];
   md << "## Counts\n\n| map | sequences | frames | flow pairs |\n| --- | --- | --- | --- |\n";
   for (const auto& [map, n] : per_map)
     md << "| " << map << " " << map_name(map) << " | " << n << " | " << n * c.frames << " | "
@@ -41,9 +41,16 @@ void counts_section(std::ostringstream& md, const ReleaseConfig& c) {
   md << "\n| time of day | sequences | share |\n| --- | --- | --- |\n";
   for (const auto& [time, n] : per_time)
     md << "| " << time << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
+  md << "\n| sky | sequences | share |\n| --- | --- | --- |\n";
+  for (const auto& [sky, n] : per_sky)
+    md << "| " << sky << " | " << n << " | " << 100.0 * n / plans.size() << " % |\n";
   md << "\nDawn and dusk put the sun between 5 degrees below the horizon and 6 above, night 18-40 "
         "below with the moon up or not and the lamps on; every "
-        "sequence has one exposure, recorded in its meta.json (`exposure`).\n";
+        "sequence has one exposure, recorded in its meta.json (`exposure`). A sky map (CC0 Poly "
+        "Haven "
+        "panoramas from the npm package @pmndrs/assets 1.7.0) shows above its recorded horizon "
+        "line and its sun sets the time of day; a sequence whose meta.json `weather` has no "
+        "`sky_map` shows the physical sky.\n";
 }
 
 // Mean bytes per frame of each kind of the release (all views), from its files on disk.

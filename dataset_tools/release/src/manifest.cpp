@@ -36,16 +36,17 @@ std::vector<fs::path> release_sequence_files(const ReleaseConfig& config,
 }
 
 nlohmann::json counts(const ReleaseConfig& config) {
-  std::map<std::string, int> per_weather, per_time, per_map;
+  std::map<std::string, int> per_weather, per_time, per_sky, per_map;
   int sequences = 0;
   for (const SequencePlan& plan : plan_sequences(config))
-    ++per_weather[plan.weather], ++per_time[plan.time_of_day], ++per_map[map_name(plan.map)],
-        ++sequences;
+    ++per_weather[plan.weather], ++per_time[plan.time_of_day], ++per_sky[plan.sky],
+        ++per_map[map_name(plan.map)], ++sequences;
   return {{"sequences", sequences},
           {"frames", sequences * config.frames},
           {"flow_pairs", sequences * (config.frames - 1)},
           {"sequences_per_weather", per_weather},
           {"sequences_per_time_of_day", per_time},
+          {"sequences_per_sky", per_sky},
           {"sequences_per_map", per_map}};
 }
 

@@ -158,7 +158,8 @@ nlohmann::json to_json(const SequenceMeta& m) {
                                     {"actors", &m.actors},
                                     {"boxes_2d", &m.boxes},
                                     {"rig", &m.rig},
-                                    {"statistics", &m.statistics}})
+                                    {"statistics", &m.statistics},
+                                    {"final", &m.final}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }
@@ -186,6 +187,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.boxes = j.value("boxes_2d", nlohmann::json());
     m.rig = j.value("rig", nlohmann::json());
     m.statistics = j.value("statistics", nlohmann::json());
+    m.final = j.value("final", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());

@@ -28,7 +28,7 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
                     config.frames,
                     config.models};
   set_actors(spec, config);
-  spec.time_of_day = plan.time_of_day;
+  spec.time_of_day = plan.time_of_day, spec.sky = plan.sky;
   return spec;
 }
 
@@ -89,6 +89,19 @@ Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& c
   return denoise_cube(cube);
 }
 
+Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
+                            const Projection& camera, ImageView<const float> depth,
+                            ImageView<const std::uint16_t> instance) {
+  if (config.denoise == "none") return raw_color(layers);
+  if (config.denoise == "oidn") {
+    const NeuralFeatures f = neural_features(layers);
+    return neural_denoise(release_unet(config), {f.color.view(), f.albedo.view(), f.normal.view(),
+                                                 autoexposure(f.color.view()),
+                                                 camera.kind == Projection::Kind::Equirectangular});
+  }
+  return denoise(layers, {&camera, depth, instance});
+}
+
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth) {
@@ -101,14 +114,7 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
                            int frame, const GroundTruth& truth) {
   const ColorLayers layers =
       renderer.color_layers(camera, pair, sequence.color_options(config, frame));
-  if (config.denoise == "none") return raw_color(layers);
-  if (config.denoise == "oidn") {
-    const NeuralFeatures f = neural_features(layers);
-    return neural_denoise(release_unet(config), {f.color.view(), f.albedo.view(), f.normal.view(),
-                                                 autoexposure(f.color.view()),
-                                                 camera.kind == Projection::Kind::Equirectangular});
-  }
-  return denoise(layers, {&camera, truth.depth.view(), truth.instance.view()});
+  return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
 }
 
 Sequence make_sequence(const SequenceSpec& spec) {
@@ -118,8 +124,10 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
   city_config.duration = (spec.frames + 1) / kFrameRate;
   city_config.models = spec.models;
-  const Weather weather = at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
-                                         spec.time_of_day, spec.seed);
+  const Weather weather =
+      under_sky(at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
+                               spec.time_of_day, spec.seed),
+                spec.sky, spec.seed);
   city_config.actors = spec.actors;
   city_config.wet = weather.precipitation > 0;
   city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;

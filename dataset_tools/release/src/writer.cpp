@@ -1,6 +1,7 @@
 #include "flowscape/release/writer.h"
 
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string_view>
 
@@ -13,6 +14,7 @@
 #include "flowscape/release/classes.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/explorer.h"
+#include "flowscape/release/final_pass.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
@@ -31,9 +33,11 @@ using ViewImages = std::map<std::string, AnyImage>;
 // truth.more[k] is the flow of step more_steps[k]. A new output kind adds its image here.
 // A view's images, its semantic ids in the release's class table.
 ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
-                       const std::vector<int>& more_steps, const ClassTable& classes) {
+                       const std::vector<int>& more_steps, const ClassTable& classes,
+                       Image<std::uint8_t> final = {}) {
   ViewImages images;
   images.emplace("color", std::move(color));
+  images.emplace("final", std::move(final));
   images.emplace("flow", std::move(truth.flow));
   to_table_ids(classes, truth.semantic.view());
   images.emplace("semantic", std::move(truth.semantic));
@@ -105,30 +109,71 @@ FrameStatistics statistics_of(const ViewImages& images, int frame, int frames) {
                           image("semantic", std::uint8_t()), image("instance", std::uint16_t()));
 }
 
+// The final pass of the six faces (stacked, as write_cube takes them) and the ERP stitched from
+// them, each through the camera (virtual cameras: no vignetting).
+struct FinalFlowscape {
+  Image<std::uint8_t> faces, erp;
+};
+FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequence,
+                               Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
+                               int frame) {
+  const Image<float> faces = final_cube_color(config, sequence, renderer, frame);
+  FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
+  const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
+  int view = 1;
+  for (Face face : kFaces) {
+    const ImageView<const float> linear = face_view(faces.view(), face);
+    const Image<std::uint8_t> developed =
+        develop(config, sequence, linear, face_camera, false, exposure, frame, view++);
+    std::copy(developed.data.begin(), developed.data.end(), face_view(out.faces.view(), face).data);
+  }
+  const Image<float> erp = resample_bilinear(map.sampling, faces);
+  out.erp = develop(config, sequence, erp.view(), Projection::equirectangular(config.height), false,
+                    exposure, frame, 0);
+  return out;
+}
+
 // The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
 // there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
-// directly (exact, and cheap next to colour).
+// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
+// previous frame) becomes this frame's.
 // Returns the ERP's statistics.
 FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
                                       const Sequence& sequence, Renderer& renderer,
-                                      const CubeToErp* map, const fs::path& dir, int frame) {
+                                      const CubeToErp* map, const fs::path& dir, int frame,
+                                      Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   const Projection erp = Projection::equirectangular(config.height);
   GroundTruth truth = renderer.ground_truth(erp, plan.request);
   Image<float> erp_color;
+  CubeFrame cube;
+  Image<float> faces_color;
   if (map) {
     const RenderOptions options = sequence.color_options(config, frame);
-    CubeFrame cube = render_cube(renderer, config.face_size, plan.request, &options);
-    const Image<float> color = denoised_cube_color(config, cube);
-    erp_color = resample_bilinear(map->sampling, color);
-    write_cube(dir, layout, frame, config.frames,
-               view_images(std::move(cube.truth), linear_to_srgb8(color.view()), plan.steps,
-                           class_table(config.classes)));
+    cube = render_cube(renderer, config.face_size, plan.request, &options);
+    faces_color = denoised_cube_color(config, cube);
+    erp_color = resample_bilinear(map->sampling, faces_color);
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
   }
-  const ViewImages images = view_images(std::move(truth), linear_to_srgb8(erp_color.view()),
-                                        plan.steps, class_table(config.classes));
+  Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
+  FinalFlowscape final;
+  if (exposure) {
+    *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), frame);
+    if (map) {
+      final = final_flowscape(config, sequence, renderer, *map, *exposure, frame);
+    } else {
+      const Image<float> linear = final_color(
+          config, sequence, renderer, erp, [&](double t) { return sequence.city.rig(t); }, frame);
+      final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
+    }
+  }
+  if (map)
+    write_cube(dir, layout, frame, config.frames,
+               view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps,
+                           class_table(config.classes), std::move(final.faces)));
+  const ViewImages images = view_images(std::move(truth), std::move(erp_clean), plan.steps,
+                                        class_table(config.classes), std::move(final.erp));
   write_single_view(dir, layout, View(), frame, config.frames, images);
   return statistics_of(images, frame, config.frames);
 }
@@ -137,16 +182,28 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
 // Returns the first camera's statistics (statistics_view).
 FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
                                 const Rig& rig, const Sequence& sequence, Renderer& renderer,
-                                const fs::path& dir, int frame) {
+                                const fs::path& dir, int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   FrameStatistics first;
+  int view = 0;
   for (const RigCamera& camera : rig.cameras) {
     const TruthRequest request = at_camera(plan.request, camera);
     GroundTruth truth = renderer.ground_truth(camera.projection, request);
     const Image<float> color =
         release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
-    const ViewImages images = view_images(std::move(truth), linear_to_srgb8(color.view()),
-                                          plan.steps, class_table(config.classes));
+    Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
+    if (exposure) {
+      if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
+        *exposure = exposure_after(config, sequence, *exposure, clean.view(), frame);
+      const Eigen::Translation3d mount(camera.position);
+      const Image<float> linear = final_color(
+          config, sequence, renderer, camera.projection,
+          [&](double t) { return sequence.city.rig(t) * mount; }, frame);
+      final = develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame,
+                      view++);
+    }
+    const ViewImages images = view_images(std::move(truth), std::move(clean), plan.steps,
+                                          class_table(config.classes), std::move(final));
     write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
     if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
   }
@@ -215,6 +272,10 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("ego")) recorded["ego"] = ReleaseConfig{}.ego;
     if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
     if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
+    const nlohmann::json now = to_json(ReleaseConfig{});
+    for (const char* key : {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare",
+                            "vignetting"})  // the defaults hold what releases without them did
+      if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;
 }
@@ -243,24 +304,40 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   for (int f = 0; f < config.frames; ++f)
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f))
       statistics[std::size_t(f)] = frame_statistics(dir, view, f, config.frames);
-  if (!frames_to_render.empty()) {
-    Renderer renderer(sequence.city.scene);
-    const Rig rig = release_rig(config);
-    const bool faces = rig.cameras.empty() && config.cube;
-    const CubeToErp map = faces ? make_cube_to_erp(config.face_size, config.height) : CubeToErp{};
-    for (int f : frames_to_render) {
-      statistics[std::size_t(f)] =
-          rig.cameras.empty() ? write_flowscape_frame(config, layout, sequence, renderer,
-                                                      faces ? &map : nullptr, dir, f)
-                              : write_rig_frame(config, layout, rig, sequence, renderer, dir, f);
-      progress.frame_done();
+  // the final pass's auto-exposure, frame by frame: frames written before are read back
+  const bool final = layout.has("final");
+  std::vector<Exposure> exposures(final ? std::size_t(config.frames) : 0);
+  Exposure exposure;
+  std::unique_ptr<Renderer> renderer;
+  const Rig rig = release_rig(config);
+  const bool faces = rig.cameras.empty() && config.cube;
+  const CubeToErp map = faces && !frames_to_render.empty()
+                            ? make_cube_to_erp(config.face_size, config.height)
+                            : CubeToErp{};
+  for (int f = 0; f < config.frames; ++f) {
+    if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
+      if (final)
+        exposures[std::size_t(f)] = exposure = exposure_after(
+            config, sequence, exposure,
+            read_image<std::uint8_t>(dir / frame_file(output_kind("color"), view, f)).view(), f);
+      continue;
     }
+    if (!renderer) renderer = std::make_unique<Renderer>(sequence.city.scene);
+    Exposure* frame_exposure = final ? &exposure : nullptr;
+    statistics[std::size_t(f)] =
+        rig.cameras.empty()
+            ? write_flowscape_frame(config, layout, sequence, *renderer, faces ? &map : nullptr,
+                                    dir, f, frame_exposure)
+            : write_rig_frame(config, layout, rig, sequence, *renderer, dir, f, frame_exposure);
+    if (final) exposures[std::size_t(f)] = exposure;
+    progress.frame_done();
   }
   // last: its 2-D boxes come from the frames' instance images, and it marks the sequence done
   SequenceMeta meta = sequence_meta(sequence, plan, config);
   meta.boxes = boxes_json(dir, layout, config.frames);
   meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps,
                                              class_table(config.classes).size());
+  if (final) meta.final = final_json(config, exposures);
   write_meta(dir, meta);
 }
 
@@ -283,6 +360,7 @@ void claim_release(const ReleaseConfig& config, const fs::path& out, bool force)
 ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, bool force) {
   // Only a process that makes the whole release owns the folder's top level: a shard may run
   // beside others writing config.json, so their temporaries are the merge's to remove.
+  check_sky_resolution(config);
   if (config.shards == 1) remove_temporary_files(out);
   claim_release(config, out, force);
   const std::vector<SequencePlan> mine = shard_plans(config);

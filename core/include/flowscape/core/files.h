@@ -19,6 +19,10 @@ struct FileError : std::runtime_error {
 // chatter on fd 2 is muted (see formats/image_io.cpp).
 std::FILE* diagnostics();
 
+// Where fetched data (trained weights, sky maps) lives: the folder `variable` names when set, else
+// $XDG_CACHE_HOME (or ~/.cache, or /tmp without a home) / flowscape / `name`.
+std::filesystem::path cache_directory(const char* variable, const std::string& name);
+
 // Every output goes through here. Writes through a temporary file beside `path` (same extension),
 // checking each write, fsync and close, and renames it into place only when all succeeded, then
 // syncs the folder: a crash or a full disk never leaves a half-written file under `path`. The first

@@ -91,7 +91,10 @@ struct Material {
   bool glow_only = false;
   float opacity = 1;                       // Streak only
   std::shared_ptr<const Pattern> pattern;  // procedural texture (texture.h), or none
-  ImageMaps images;                        // image textures, or none
+  // Where it glows once the lamps are on (a traffic light's lit lamp): apply_weather puts it in
+  // place of `pattern`, and the Emissive surface glows with emission x the albedo it gives.
+  std::shared_ptr<const Pattern> night_pattern;
+  ImageMaps images;  // image textures, or none
 };
 
 // Per-vertex attributes are optional: each is empty or holds one entry per vertex.

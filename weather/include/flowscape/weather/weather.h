@@ -3,6 +3,7 @@
 // random variations, recorded as JSON. Applying a weather changes how a scene looks, never its
 // geometry as the ground truth sees it: fog is a medium of the colour pass, rain streaks and
 // puddles are colour-only actors, wetness changes materials.
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ struct Weather {
   double wind = 0;           // [0, 1]: slant of the rain
   double cloud_shift = 0;    // km, [0, 1000]: where over the cloud pattern the sky lies
   double moon_elevation = 40, moon_azimuth = 200;  // degrees; the moon shines at night only
+  // A real HDR sky above its horizon line (sky_map_names()); empty: the physical sky alone.
+  std::string sky_map;
+  double sky_map_rotation = 0;  // degrees the map is turned counter-clockwise
 };
 
 // sunny, cloud, fog, rain, and CARLA-like combinations: wet, wet_cloudy, soft_rain, hard_rain,
@@ -45,6 +49,23 @@ void validate(const Weather& weather);  // throws std::invalid_argument naming t
 std::vector<std::string> named_times_of_day();       // day, dawn, dusk, night
 void validate_time_of_day(const std::string& time);  // throws std::invalid_argument
 Weather at_time_of_day(Weather weather, const std::string& time, std::uint64_t seed);
+
+// Real HDR skies (opt-in): CC0 Poly Haven maps from the npm package @pmndrs/assets 1.7.0 that
+// scripts/fetch_sky_maps.sh fetches (sha256-checked) into sky_map_directory()
+// ($FLOWSCAPE_SKY_MAPS, else ~/.cache/flowscape/pmndrs-assets-1.7.0). Each is used above a recorded
+// horizon line (the land under it would be labelled sky), the physical sky below; its sun is taken
+// out of the map and traced as a disc.
+std::vector<std::string> sky_map_names();  // sky, park, sunrise, dawn, venice
+std::filesystem::path sky_map_directory();
+void validate_sky(const std::string& sky);  // "physical" or a map name; else std::invalid_argument
+// "physical" returns the weather; a map name sets sky_map, a rotation chosen by `seed`, the sun's
+// elevation and azimuth (and the time of day, as that elevation) from the map's sun, and no
+// cloudiness (the map shows the clouds; the physical sky under its horizon line is clear). A map
+// that was not fetched leaves the weather as it is, with one warning per map on diagnostics().
+Weather under_sky(Weather weather, const std::string& sky, std::uint64_t seed);
+// Throws std::invalid_argument, naming the map and both resolutions, when a fetched map would be
+// magnified more than twice in an image of `pixels_per_radian`.
+void check_sky_resolution(const std::string& sky, double pixels_per_radian);
 
 nlohmann::json to_json(const Weather& weather);
 Weather weather_from_json(const nlohmann::json& json);  // validated

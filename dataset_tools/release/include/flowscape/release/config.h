@@ -32,6 +32,9 @@ struct ReleaseConfig {
   // Times of day (weather.h's at_time_of_day: day, dawn, dusk or a sun elevation), cycled over the
   // release's sequences by their number, so they fall across maps and weathers.
   std::vector<std::string> times_of_day{"day", "day", "day", "dawn", "dusk", "night"};
+  // Skies (weather.h's under_sky: "physical", or a real HDR sky map whose sun replaces the time of
+  // day), cycled over the release's sequences by their number.
+  std::vector<std::string> skies{"physical"};
   int vehicles = 120, pedestrians = 80;
   // The share of sequences whose ego turns left or right at a junction within its frames (city.h's
   // EgoRoute::Turn; the others drive on as traffic lets them, EgoRoute::Drive): sequence number n
@@ -68,6 +71,15 @@ struct ReleaseConfig {
   // default is what bench_outputs found cheap next to the colour (docs/release.md): 11 % of a
   // frame's colour time together; normal_shading (23 %) and more gaps are asked for.
   std::vector<std::string> outputs{"flow_backward", "valid_backward", "scene_flow", "normal"};
+  // The final pass (output kind "final", release/final_pass.h): the shutter's angle (degrees of a
+  // frame, 1-360), shot and read noise on or off, the sensor's pixel pitch (micrometres: smaller
+  // pixels, more noise), the share of light the lens scatters into glare, vignetting on real
+  // lenses.
+  double shutter_angle = 180;
+  bool sensor_noise = true;
+  double pixel_pitch = 3;
+  double lens_glare = 0.02;
+  bool vignetting = true;
   std::vector<int> flow_gaps{1};
   // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
   // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),
@@ -76,6 +88,9 @@ struct ReleaseConfig {
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
+// Throws std::invalid_argument when a fetched sky map of the config is too small for its images
+// (the ERP's and the cube faces' pixels per radian; weather.h's check_sky_resolution).
+void check_sky_resolution(const ReleaseConfig& config);
 inline constexpr int kDenoisedIndirectSpp = 4;
 // How many of a pixel's samples gather indirect light (see ReleaseConfig::indirect_spp).
 int indirect_samples(const ReleaseConfig& config);
@@ -118,7 +133,7 @@ std::map<std::string, std::string> parse_models(const std::vector<std::string>& 
 struct SequencePlan {
   std::string name;        // map<MM>_seq<SS>
   int map, index, number;  // number: position in the whole release
-  std::string weather, time_of_day;
+  std::string weather, time_of_day, sky;
   std::uint64_t seed;
   bool turns;  // its ego turns at a junction (ReleaseConfig::turn_share of ego_routes "mix")
 };

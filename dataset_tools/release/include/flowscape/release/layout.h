@@ -47,7 +47,7 @@ struct OutputKind {
 };
 
 // Every kind a release can hold (docs/release.md, "Output kinds", has each one's definition).
-inline constexpr std::array<OutputKind, 11> kOutputKinds{{
+inline constexpr std::array<OutputKind, 12> kOutputKinds{{
     {"color", "color", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true,
      Direction::None, false, true, "8-bit sRGB PNG, path traced"},
     {"flow", "flow", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true,
@@ -81,6 +81,11 @@ inline constexpr std::array<OutputKind, 11> kOutputKinds{{
      true, Direction::None, false, false,
      "float EXR: the shading normal there (smoothed, bumped and normal-mapped by the textures), "
      "camera frame (NaN for the sky)"},
+    {"final", "final", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true,
+     Direction::None, false, false,
+     "8-bit sRGB PNG, the final pass: motion blur traced over the shutter, auto-exposure, lens "
+     "glare and vignetting, shot and read noise, a filmic tone curve (meta.json `final`); the "
+     "ground truth is the frame time's"},
 }};
 
 // The row named `name`; throws std::invalid_argument for other names.

@@ -33,6 +33,7 @@ struct SequenceMeta {
   nlohmann::json views, actors, boxes;
   nlohmann::json rig;         // the rig's record (renderer/rig.h) for other rigs than flowscape
   nlohmann::json statistics;  // statistics.h's record of the sequence (null when not recorded)
+  nlohmann::json final;       // the final pass's shutter, sensor and exposures (final_pass.h)
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from

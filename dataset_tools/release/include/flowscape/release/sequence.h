@@ -28,6 +28,7 @@ struct SequenceSpec {
   std::vector<Vec3> ego_cameras{Vec3::Zero()};  // the rig's optical centres (rig frame)
   std::vector<std::string> asset_packs{};
   std::string time_of_day = "day";  // weather.h's at_time_of_day
+  std::string sky = "physical";     // weather.h's under_sky
 };
 // The spec of a planned sequence of a release (its ego start follows from its seed, its route
 // from the plan's `turns`).
@@ -56,6 +57,10 @@ Sequence make_sequence(const SequenceSpec& spec);
 // The U-Net of the release's denoise_model, loaded once per process (a FileError naming the
 // weights file when they are missing or damaged).
 const UNet& release_unet(const ReleaseConfig& config);
+// A view's colour layers as the release's denoiser leaves them (the guides for a-trous).
+Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
+                            const Projection& camera, ImageView<const float> depth,
+                            ImageView<const std::uint16_t> instance);
 // The colour of a cube frame's faces as the release's denoiser leaves them (stacked).
 Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube);
 // The colour of one camera's view of a frame as a release renders it without cube faces: path

@@ -1,0 +1,43 @@
+#pragma once
+// A release's final pass (output kind "final", beside the clean "color"): the scene traced over
+// each frame's shutter (renderer/shutter.h) and denoised as the clean colour is, then seen through
+// the release's camera (renderer/sensor.h): an auto-exposure that adapts over the sequence, glare,
+// vignetting on real lenses, shot and read noise, a filmic tone curve and sRGB. The ground truth
+// stays the frame time's.
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "flowscape/release/config.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/renderer/sensor.h"
+#include "flowscape/renderer/shutter.h"
+
+namespace flowscape {
+
+SensorModel release_sensor(const ReleaseConfig& config);
+// The shutter of a frame (ReleaseConfig::shutter_angle, centred on the frame's time).
+Shutter frame_shutter(const ReleaseConfig& config, int frame);
+
+// The auto-exposure after a frame, its key measured on the frame's clean colour as written (8-bit
+// sRGB, brought back to cd/m^2 through the sequence's exposure): the same bytes whether the
+// sequence was rendered in one go or resumed.
+Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
+                        const Exposure& previous, ImageView<const std::uint8_t> clean, int frame);
+
+// One view's colour over the frame's shutter, denoised (linear, the clean pass's units).
+Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
+                         const Projection& camera, const CameraTrack& track, int frame);
+// The six cube faces' (stacked), for the flowscape rig.
+Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
+                              Renderer& renderer, int frame);
+
+// A view's final colour through the camera, 8-bit sRGB: `lens` says whether it is a real lens
+// (vignetting) or a virtual camera (the ERP, a cube face); `view` seeds its noise apart.
+Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequence,
+                            ImageView<const float> color, const Projection& camera, bool lens,
+                            const Exposure& exposure, int frame, int view);
+
+// meta.json's "final": the shutter, the sensor and each frame's exposure.
+nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposure>& exposures);
+
+}  // namespace flowscape

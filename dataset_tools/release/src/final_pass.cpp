@@ -1,0 +1,109 @@
+#include "flowscape/release/final_pass.h"
+
+#include <cmath>
+
+#include "flowscape/core/random.h"
+#include "flowscape/formats/srgb.h"
+
+namespace flowscape {
+namespace {
+
+float srgb8_to_linear(std::uint8_t value) {
+  const float c = value / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// Colour in the clean pass's units (the sequence's exposure applied) to cd/m^2.
+double nits_per_value(const Sequence& sequence) {
+  return kNitsPerUnit / sequence.city.scene.environment.exposure;
+}
+
+}  // namespace
+
+SensorModel release_sensor(const ReleaseConfig& c) {
+  SensorModel sensor;
+  sensor.pixel_pitch = c.pixel_pitch * 1e-6;
+  sensor.noise = c.sensor_noise, sensor.vignetting = c.vignetting, sensor.glare = c.lens_glare;
+  return sensor;
+}
+
+Shutter frame_shutter(const ReleaseConfig& config, int frame) {
+  return centred_shutter(Sequence::time(frame), config.shutter_angle);
+}
+
+Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
+                        const Exposure& previous, ImageView<const std::uint8_t> clean, int frame) {
+  Image<float> nits(clean.width, clean.height, 3);
+  const double scale = nits_per_value(sequence);
+  for (int y = 0; y < clean.height; ++y)
+    for (int x = 0; x < clean.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        nits.pixel(x, y)[c] = float(srgb8_to_linear(clean.pixel(x, y)[c]) * scale);
+  const Shutter shutter = frame_shutter(config, frame);
+  return auto_exposure(release_sensor(config), previous, key_luminance(nits.view()), 1 / kFrameRate,
+                       shutter.close - shutter.open);
+}
+
+Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
+                         const Projection& camera, const CameraTrack& track, int frame) {
+  const RenderOptions options = sequence.color_options(config, frame);
+  const Shutter shutter = frame_shutter(config, frame);
+  const ColorLayers layers = shutter_layers(renderer, camera, shutter, track, options);
+  const Image<float> depth =
+      config.denoise == "atrous"
+          ? shutter_depth(renderer, camera, shutter, track, shutter_steps(options))
+          : Image<float>{};
+  const Image<std::uint16_t> no_ids(camera.width, camera.height, 1);
+  return denoised_color(config, layers, camera, depth.view(), no_ids.view());
+}
+
+Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
+                              Renderer& renderer, int frame) {
+  const RenderOptions options = sequence.color_options(config, frame);
+  const CubeFrame cube = shutter_cube(
+      renderer, config.face_size, frame_shutter(config, frame),
+      [&](double t) { return sequence.city.rig(t); }, options);
+  return denoised_cube_color(config, cube);
+}
+
+Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequence,
+                            ImageView<const float> color, const Projection& camera, bool lens,
+                            const Exposure& exposure, int frame, int view) {
+  SensorModel sensor = release_sensor(config);
+  sensor.vignetting = sensor.vignetting && lens;
+  Image<float> nits(color.width, color.height, 3);
+  const double scale = nits_per_value(sequence);
+  for (std::size_t i = 0; i < nits.data.size(); ++i) nits.data[i] = float(color.data[i] * scale);
+  const Shutter shutter = frame_shutter(config, frame);
+  const Image<float> raw =
+      sensor_raw(lens_image(nits.view(), camera, sensor).view(), sensor, exposure,
+                 shutter.close - shutter.open,
+                 derived_seed(sequence.color_seed(frame), std::uint64_t(view), 3));
+  return linear_to_srgb8(tone_map(raw.view(), sensor).view());
+}
+
+nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposure>& exposures) {
+  const SensorModel s = release_sensor(config);
+  nlohmann::json per_frame = nlohmann::json::array();
+  for (const Exposure& e : exposures)
+    per_frame.push_back(
+        {{"adapted_key", e.adapted_key}, {"integration", e.integration}, {"gain", e.gain}});
+  return {{"shutter_angle", config.shutter_angle},
+          {"shutter_steps",
+           shutter_steps({config.spp, config.max_bounces, 0, true, indirect_samples(config)})},
+          {"sensor",
+           {{"f_number", s.f_number},
+            {"pixel_pitch_um", s.pixel_pitch * 1e6},
+            {"quantum_efficiency", s.quantum_efficiency},
+            {"full_well", s.full_well},
+            {"read_noise", s.read_noise},
+            {"max_gain", s.max_gain},
+            {"adaptation_s", s.adaptation},
+            {"grey", s.grey},
+            {"glare", s.glare},
+            {"noise", s.noise},
+            {"vignetting", s.vignetting}}},
+          {"exposures", per_frame}};
+}
+
+}  // namespace flowscape

@@ -1,0 +1,43 @@
+#pragma once
+// Motion blur for the final pass: a frame's colour integrated over the time its shutter is open,
+// traced, not smeared: the shutter is cut into steps, and for each the scene and the camera are
+// posed at its middle time and a share of the pixel's samples traced there. The ground truth
+// stays defined at the frame's time.
+#include <functional>
+#include <vector>
+
+#include "flowscape/renderer/renderer.h"
+
+namespace flowscape {
+
+struct Shutter {
+  double open = 0, close = 0;  // seconds
+};
+// `angle` degrees of a frame at kFrameRate (180: half the frame time), centred on `time`.
+Shutter centred_shutter(double time, double angle);
+
+inline constexpr int kMaxShutterSteps = 8;
+// The steps a frame's shutter is cut into: the most, up to kMaxShutterSteps, that share the
+// samples (and those that gather indirect light, when not all do) out evenly.
+int shutter_steps(const RenderOptions& options);
+// The middle of each step: open + (k + 0.5) / steps x (close - open).
+std::vector<double> shutter_times(const Shutter& shutter, int steps);
+
+// Where the camera is (camera -> world, as FramePair::rig) at any time.
+using CameraTrack = std::function<Pose(double time)>;
+
+// The colour layers over the shutter: each step traced with samples_per_pixel / steps samples (its
+// own seed) with the scene and `camera` posed at its time, then averaged (the normals summed), so
+// the albedo and normals the denoiser is guided by follow the blur.
+ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const RenderOptions& options);
+// The depth of each pixel's centre ray averaged over the same times (over the times it meets a
+// surface; +infinity where it never does): a denoising guide that does not cut the blur trails.
+Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, int steps);
+// The six cube faces over the shutter (render_cube's layout): their layers and, in truth, the
+// shutter-averaged depth and no instance ids (the guides denoise_cube takes).
+CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
+                       const CameraTrack& camera, const RenderOptions& options);
+
+}  // namespace flowscape

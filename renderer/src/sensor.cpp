@@ -1,0 +1,163 @@
+#include "flowscape/renderer/sensor.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "flowscape/core/random.h"
+
+namespace flowscape {
+namespace {
+
+constexpr double kLensTransmittance = 0.9;
+constexpr double kPhotonsPerLuxSecond = 4.09e15;  // per m^2, at 555 nm
+constexpr double kGlareSigmas[3] = {2, 8, 32};    // pixels
+constexpr double kKeyOnCurve = 0.14;              // the curve's input that shows as 20 % grey
+
+double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+void require(bool ok, const char* what) {
+  if (!ok) throw std::invalid_argument(std::string("sensor: ") + what);
+}
+
+// A standard normal number (Box-Muller) and a Poisson one (Knuth's product below a mean of 30,
+// the normal approximation above, where it is within a fraction of a percent).
+double normal(Random& random) {
+  const double u = std::max(random.uniform(), 1e-300), v = random.uniform();
+  return std::sqrt(-2 * std::log(u)) * std::cos(2 * kPi * v);
+}
+double poisson(Random& random, double mean) {
+  if (mean <= 0) return 0;
+  if (mean > 30) return std::max(0.0, std::round(mean + std::sqrt(mean) * normal(random)));
+  const double limit = std::exp(-mean);
+  double product = random.uniform();
+  int count = 0;
+  while (product > limit) product *= random.uniform(), ++count;
+  return count;
+}
+
+// cos(theta) x the pixel's solid angle over the image centre's.
+Image<float> relative_illumination(const Projection& camera) {
+  Image<float> falloff(camera.width, camera.height, 1, 1.0f);
+  if (camera.kind == Projection::Kind::Equirectangular) return falloff;
+  const Vec2 centre(camera.width / 2.0, camera.height / 2.0);
+  const Vec3 axis = camera.ray(centre).normalized();
+  const double centre_spread = camera.pixel_spread(centre);
+  tbb::parallel_for(0, camera.height, [&](int y) {
+    for (int x = 0; x < camera.width; ++x) {
+      const Vec2 pixel(x + 0.5, y + 0.5);
+      const Vec3 ray = camera.ray(pixel);
+      if (ray.isZero()) continue;
+      const double spread = camera.pixel_spread(pixel) / centre_spread;
+      falloff.pixel(x, y)[0] = float(std::max(0.0, ray.normalized().dot(axis)) * spread * spread);
+    }
+  });
+  return falloff;
+}
+
+}  // namespace
+
+double key_scale(double key) {
+  const auto krawczyk = [](double l) { return 1.03 - 2 / (2 + std::log10(l + 1)); };
+  return std::max(krawczyk(key), 0.02) / krawczyk(1000);
+}
+
+void validate(const SensorModel& s) {
+  require(s.f_number >= 0.5 && s.f_number <= 64, "f_number must be in 0.5..64");
+  require(s.pixel_pitch >= 0.5e-6 && s.pixel_pitch <= 50e-6,
+          "pixel_pitch must be in 0.5..50 micrometres");
+  require(s.quantum_efficiency > 0 && s.quantum_efficiency <= 1,
+          "quantum_efficiency must be in (0, 1]");
+  require(s.full_well >= 100 && s.full_well <= 1e7, "full_well must be in 100..1e7 electrons");
+  require(s.read_noise >= 0 && s.read_noise <= 1000, "read_noise must be in 0..1000 electrons");
+  require(s.max_gain >= 1 && s.max_gain <= 1e4, "max_gain must be in 1..10000");
+  require(s.adaptation >= 0 && s.adaptation <= 60, "adaptation must be in 0..60 seconds");
+  require(s.grey > 0 && s.grey <= 0.5, "grey must be in (0, 0.5]");
+  require(s.glare >= 0 && s.glare <= 0.5, "glare must be in 0..0.5");
+}
+
+double electrons_per_nit_second(const SensorModel& s) {
+  return kPi * kLensTransmittance / (4 * s.f_number * s.f_number) * s.pixel_pitch * s.pixel_pitch *
+         kPhotonsPerLuxSecond * s.quantum_efficiency;
+}
+
+double key_luminance(ImageView<const float> nits) {
+  double log_sum = 0;
+  const std::size_t pixels = std::size_t(nits.width) * nits.height;
+  for (std::size_t i = 0; i < pixels; ++i)
+    log_sum += std::log(std::max(0.0, luminance(nits.data + i * nits.channels)) + 1e-3);
+  return std::exp(log_sum / std::max<std::size_t>(pixels, 1));
+}
+
+Exposure auto_exposure(const SensorModel& s, const Exposure& previous, double measured,
+                       double elapsed, double shutter) {
+  Exposure e;
+  const double step = s.adaptation > 0 ? 1 - std::exp(-elapsed / s.adaptation) : 1;
+  e.adapted_key = previous.adapted_key > 0
+                      ? previous.adapted_key * std::pow(measured / previous.adapted_key, step)
+                      : measured;
+  // the electrons the key would give over the whole shutter, against its share of the full well
+  const double wanted = s.grey * key_scale(e.adapted_key) * s.full_well /
+                        (electrons_per_nit_second(s) * shutter * e.adapted_key);
+  e.integration = std::min(1.0, wanted);
+  e.gain = std::clamp(wanted, 1.0, s.max_gain);
+  return e;
+}
+
+Image<float> lens_image(ImageView<const float> nits, const Projection& camera,
+                        const SensorModel& s) {
+  Image<float> out(nits.width, nits.height, 3);
+  std::copy(nits.data, nits.data + out.data.size(), out.data.begin());
+  if (s.vignetting) {
+    const Image<float> falloff = relative_illumination(camera);
+    for (std::size_t i = 0; i < falloff.data.size(); ++i)
+      for (int c = 0; c < 3; ++c) out.data[3 * i + c] *= falloff.data[i];
+  }
+  if (s.glare <= 0) return out;
+  const cv::Mat image(out.height, out.width, CV_32FC3, out.data.data());
+  cv::Mat spread = cv::Mat::zeros(image.size(), CV_32FC3), blurred;
+  for (double sigma : kGlareSigmas) {
+    cv::GaussianBlur(image, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT);
+    spread += blurred / 3.0;
+  }
+  cv::addWeighted(image, 1 - s.glare, spread, s.glare, 0, image);
+  return out;
+}
+
+Image<float> sensor_raw(ImageView<const float> sensor_nits, const SensorModel& s, const Exposure& e,
+                        double shutter, std::uint64_t seed) {
+  Image<float> raw(sensor_nits.width, sensor_nits.height, 3);
+  const double electrons_per_nit = electrons_per_nit_second(s) * shutter * e.integration;
+  const double to_raw = e.gain / s.full_well;  // the converter saturates at full_well / gain
+  tbb::parallel_for(0, raw.height, [&](int y) {
+    for (int x = 0; x < raw.width; ++x) {
+      Random random(mix_bits(seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x))));
+      for (int c = 0; c < 3; ++c) {
+        const double mean = std::max(0.0, double(sensor_nits.pixel(x, y)[c])) * electrons_per_nit;
+        double electrons = s.noise ? poisson(random, mean) + s.read_noise * normal(random) : mean;
+        electrons = std::clamp(electrons, 0.0, s.full_well);
+        raw.pixel(x, y)[c] = float(std::min(1.0, electrons * to_raw));
+      }
+    }
+  });
+  return raw;
+}
+
+float filmic(float x) {
+  x = std::max(x, 0.0f);
+  return std::clamp(x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f), 0.0f, 1.0f);
+}
+
+Image<float> tone_map(ImageView<const float> raw, const SensorModel& s) {
+  Image<float> display(raw.width, raw.height, raw.channels);
+  const float to_scene = float(kKeyOnCurve / s.grey);
+  std::transform(raw.data, raw.data + display.data.size(), display.data.begin(),
+                 [to_scene](float value) { return filmic(value * to_scene); });
+  return display;
+}
+
+}  // namespace flowscape
