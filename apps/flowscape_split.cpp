@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 0;
   bool no_panoflow = false;
   PanoflowOptions panoflow;
-  std::string flow = "classic", sky = "invalid", occluded = "kept";
+  std::string flow = "classic", sky = "invalid", occluded = "kept", pass = "clean";
   app.add_option("release", release, "release folder (made by gen_flowscape)")->required();
   app.add_option("--seed", seed, "which sequences of each weather go to test");
   app.add_flag("--no-panoflow", no_panoflow, "only splits/, no panoflow/ tree");
@@ -32,13 +32,18 @@ int main(int argc, char** argv) {
   app.add_option("--occluded", occluded,
                  "panoflow/ pixels whose target is hidden in the next frame: kept, or invalid")
       ->check(CLI::IsMember({"invalid", "kept"}));
+  app.add_option("--pass", pass,
+                 "panoflow/ images: clean (color) or final (the final pass; the release must "
+                 "have it)")
+      ->check(CLI::IsMember({"clean", "final"}))
+      ->capture_default_str();
   finish_options(app, "flowscape_split");
   CLI11_PARSE(app, argc, argv);
   try {
     const Split split = split_sequences(read_release_sequences(release), seed);
     write_split_files(release, split);
     panoflow = {flow == "classic" ? FlowMode::Classic : FlowMode::Wrap360, sky == "invalid",
-                occluded == "invalid"};
+                occluded == "invalid", pass == "final"};
     if (!no_panoflow && !read_release_layout(release).has_erp()) {
       no_panoflow = true;
       std::fprintf(diagnostics(),

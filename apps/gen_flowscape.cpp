@@ -137,7 +137,14 @@ int main(int argc, char** argv) {
          "the final pass's sensor pixel pitch in micrometres (smaller: more noise)");
   option("--lens-glare", "lens_glare", defaults.lens_glare,
          "the final pass: share of light the lens scatters round bright lights (0-0.5)");
-  bool no_noise = false, no_vignetting = false;
+  option("--chromatic-aberration", "chromatic_aberration", defaults.chromatic_aberration,
+         "the final pass: lateral chromatic aberration of real lenses, red magnified and blue "
+         "shrunk by this share of the radius (|k| <= 0.05)");
+  option("--jpeg-quality", "jpeg_quality", defaults.jpeg_quality,
+         "the final pass through JPEG compression at this quality (1-100; 0: none)");
+  bool no_noise = false, no_vignetting = false, bayer = false;
+  app.add_flag("--bayer", bayer,
+               "the final pass's sensor behind an RGGB Bayer filter, demosaicked");
   app.add_flag("--no-sensor-noise", no_noise, "the final pass without shot and read noise");
   app.add_flag(
       "--no-vignetting", no_vignetting,
@@ -189,6 +196,7 @@ int main(int argc, char** argv) {
     if (no_cube) given["cube"] = false;
     if (no_noise) given["sensor_noise"] = false;
     if (no_vignetting) given["vignetting"] = false;
+    if (bayer) given["bayer"] = true;
     if (!models.empty()) given["models"] = parse_models(models);
     if (!packs.empty()) given["asset_packs"] = packs;
     sources.file = config_file;

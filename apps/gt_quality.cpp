@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
       "Photoconsistency of optical-flow ground truth: PE = mean |I1 - I2|, WPE = mean "
       "|I2(x + V) - I1| (bilinear), Diff = (PE - WPE) / PE; 'high' quality from 10 %. The "
       "layout is recognised from the folder."};
-  std::string root, images, flows, json, csv, error_images;
+  std::string root, images, flows, json, csv, error_images, pass = "clean";
   bool panorama = false, quiet = false;
   int sample = 0;
   app.add_option("dataset", root,
@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
   app.add_option("--json", json, "also write the rows as JSON here");
   app.add_option("--csv", csv, "also write the rows as CSV here");
   app.add_option("--error-images", error_images, "write |I2(x + V) - I1| per pair as PNGs here");
+  app.add_option("--pass", pass,
+                 "a FlowScape release's images: clean (color) or final (the final pass)")
+      ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress line");
   finish_options(app, "gt_quality");
   CLI11_PARSE(app, argc, argv);
@@ -39,7 +42,7 @@ int main(int argc, char** argv) {
     if (root.empty() == images.empty() || images.empty() != flows.empty())
       throw std::invalid_argument("give a dataset folder, or --images and --flows");
     FlowDataset dataset =
-        root.empty() ? glob_flow_dataset(images, flows, panorama) : find_flow_dataset(root);
+        root.empty() ? glob_flow_dataset(images, flows, panorama) : find_flow_dataset(root, pass);
     if (sample > 0) dataset = sample_pairs(dataset, sample);
     const QualityReport report = evaluate_quality(dataset, {error_images, !quiet});
     std::fputs(report_table(report).c_str(), stdout);

@@ -86,6 +86,10 @@ class FlowScape:
     asked kind are items. Flow keeps the release's stored form (see the manifest's
     conventions); unknown flow values (1e10) are left in.
 
+    pass_name: 'clean' (the path-traced colour, `color`) or 'final' (the final pass: motion
+    blur, exposure, noise, lens; `gen_flowscape --outputs final`), as Sintel's passes; the flow
+    and every other kind are the same for both.
+
     camera: a camera of the release's rig (gen_flowscape --rig; ReleaseLayout(root).cameras) to
     read instead of the ERP: its own image and flow (fisheye, PAL, ...; flowscape.camera_model
     projects and unprojects it); a rig without an ERP needs one.
@@ -105,9 +109,12 @@ class FlowScape:
 
     def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
                  extras=(), transform=None, as_tensors=True, exclude_poles=0.0, max_flow=None,
-                 faces=None, outputs=(), camera=None):
+                 faces=None, outputs=(), camera=None, pass_name="clean"):
         if split not in ("train", "test"):
             raise ValueError(f"split must be 'train' or 'test', not {split!r}")
+        if pass_name not in ("clean", "final"):
+            raise ValueError(f"pass_name must be 'clean' or 'final', not {pass_name!r}")
+        self.image_kind = "color" if pass_name == "clean" else "final"
         if flow_mode not in ("360", "classic"):
             raise ValueError(f"flow_mode must be '360' or 'classic', not {flow_mode!r}")
         self.root, self.flow_mode, self.exclude_sky = str(root), flow_mode, exclude_sky
@@ -129,6 +136,8 @@ class FlowScape:
             self.layout, self.items = "panoflow", self._panoflow_items(split, weathers)
         if self.faces is not None and self.layout != "flowscape":
             raise ValueError(f"{self.root}: cube faces need the release layout")
+        if pass_name == "final" and self.layout != "flowscape":
+            raise ValueError(f"{self.root}: the final pass needs the release layout")
         if self.outputs and self.layout != "flowscape":
             raise ValueError(f"{self.root}: outputs need the release layout")
         if (exclude_sky or "semantic" in self.extras) and self.layout != "flowscape":
@@ -150,6 +159,9 @@ class FlowScape:
             raise ValueError(f"{self.root}: no camera {self.camera!r} (the rig has "
                              f"{', '.join(layout.cameras) or 'the ERP and the cube only'})")
         self.panorama = self.faces is None and layout.is_panorama(self.camera)
+        if self.image_kind not in layout.kinds:
+            raise ValueError(f"{self.root}: the release has no final pass (gen_flowscape "
+                             "--outputs final makes it)")
         missing = [kind for kind in self.outputs if kind not in layout.kinds]
         if missing:
             raise ValueError(f"{self.root}: the release has no {', '.join(missing)} (it holds "
@@ -178,7 +190,8 @@ class FlowScape:
                     item["outputs"] = {kind: (file(kind, at[kind]),
                                               layout.kinds[kind]["resampling"] == "flow")
                                        for kind in self.outputs}
-                    item.update(img1=file("color", frame), img2=file("color", frame + 1),
+                    item.update(img1=file(self.image_kind, frame),
+                                img2=file(self.image_kind, frame + 1),
                                 meta={"scene": scene, "frame": frame, "weather": weather,
                                       "map": map_name, "face": face, "camera": self.camera})
                     items.append(item)

@@ -381,7 +381,7 @@ void put(Image<float>& image, int x, int y, const Rgb& value) {
 
 }  // namespace
 
-ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
+ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
                        const Projection& projection, const FramePair& frames,
                        const RenderOptions& options, RenderStats* stats) {
   embree.set_times(frames.time, {});
@@ -393,7 +393,6 @@ ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images,
   const Vec3 origin = frames.rig.translation();
   const Mat3 rotation = frames.rig.linear();
   std::atomic<std::uint64_t> rays{0};
-  const Lights lights(embree.scene(), frames.time);
   const FrameContext frame{embree, images, lights, options.textures};
   tbb::parallel_for(0, H, [&](int y) {
     std::uint64_t row_rays = 0;

@@ -17,7 +17,17 @@ namespace flowscape {
 struct Renderer::Impl {
   ImageTextures images;
   EmbreeScene embree;
+  // The lights at the time of the last colour asked for: a frame's views (six faces, a rig's
+  // cameras) share them.
+  std::unique_ptr<const Lights> lights;
+  double lights_time = 0;
   explicit Impl(const Scene& scene) : images(scene), embree(scene, &images) {}
+
+  const Lights& lights_at(double time) {
+    if (!lights || lights_time != time)
+      lights = std::make_unique<const Lights>(embree.scene(), time), lights_time = time;
+    return *lights;
+  }
 };
 
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
@@ -37,7 +47,8 @@ Image<float> Renderer::color(const Projection& projection, const FramePair& fram
 
 ColorLayers Renderer::color_layers(const Projection& projection, const FramePair& frames,
                                    const RenderOptions& options, RenderStats* stats) {
-  return path_trace(impl_->embree, impl_->images, projection, frames, options, stats);
+  return path_trace(impl_->embree, impl_->images, impl_->lights_at(frames.time), projection, frames,
+                    options, stats);
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "flowscape/core/random.h"
 
@@ -40,10 +41,15 @@ double poisson(Random& random, double mean) {
   return count;
 }
 
-// cos(theta) x the pixel's solid angle over the image centre's.
+// The pixel's solid angle over the image centre's, times cos(theta) for a rectilinear lens (the
+// cos^4 law); a fisheye's entrance pupil turns towards the field (pupil aberration), so its
+// falloff is the solid angle alone (sin(theta) / theta for an equidistant lens: 64 % at 90
+// degrees).
 Image<float> relative_illumination(const Projection& camera) {
   Image<float> falloff(camera.width, camera.height, 1, 1.0f);
   if (camera.kind == Projection::Kind::Equirectangular) return falloff;
+  const bool rectilinear = camera.kind == Projection::Kind::Pinhole ||
+                           (camera.lens && camera.lens->model() == "pinhole");
   const Vec2 centre(camera.width / 2.0, camera.height / 2.0);
   const Vec3 axis = camera.ray(centre).normalized();
   const double centre_spread = camera.pixel_spread(centre);
@@ -53,10 +59,51 @@ Image<float> relative_illumination(const Projection& camera) {
       const Vec3 ray = camera.ray(pixel);
       if (ray.isZero()) continue;
       const double spread = camera.pixel_spread(pixel) / centre_spread;
-      falloff.pixel(x, y)[0] = float(std::max(0.0, ray.normalized().dot(axis)) * spread * spread);
+      const double cos_theta = rectilinear ? std::max(0.0, ray.normalized().dot(axis)) : 1;
+      falloff.pixel(x, y)[0] = float(cos_theta * spread * spread);
     }
   });
   return falloff;
+}
+
+// Red magnified by 1 + k about the image centre, blue shrunk by 1 - k (sampled bilinearly).
+void shift_colours(const cv::Mat& image, double k) {
+  std::vector<cv::Mat> channels;
+  cv::split(image, channels);
+  const double cx = image.cols / 2.0, cy = image.rows / 2.0;
+  for (int c : {0, 2}) {
+    const double scale = c == 0 ? 1 + k : 1 - k;
+    cv::Mat map_x(image.size(), CV_32FC1), map_y(image.size(), CV_32FC1);
+    for (int y = 0; y < image.rows; ++y)
+      for (int x = 0; x < image.cols; ++x) {  // the source of pixel (x, y): its centre unscaled
+        map_x.at<float>(y, x) = float(cx + (x + 0.5 - cx) / scale - 0.5);
+        map_y.at<float>(y, x) = float(cy + (y + 0.5 - cy) / scale - 0.5);
+      }
+    cv::Mat moved;
+    cv::remap(channels[c], moved, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    channels[c] = moved;
+  }
+  cv::merge(channels, image);
+}
+
+// The RGGB filter's channel at a pixel.
+int bayer_channel(int x, int y) { return y % 2 == 0 ? (x % 2 == 0 ? 0 : 1) : (x % 2 == 0 ? 1 : 2); }
+
+// OpenCV's demosaicking of an RGGB mosaic in [0, 1] (as 16 bits), back to RGB floats.
+Image<float> demosaic(const Image<float>& mosaic) {
+  cv::Mat bits(mosaic.height, mosaic.width, CV_16UC1);
+  for (int y = 0; y < mosaic.height; ++y)
+    for (int x = 0; x < mosaic.width; ++x)
+      bits.at<std::uint16_t>(y, x) =
+          std::uint16_t(std::lround(std::clamp(mosaic.pixel(x, y)[0], 0.0f, 1.0f) * 65535));
+  cv::Mat rgb;
+  cv::cvtColor(bits, rgb, cv::COLOR_BayerBG2RGB);  // OpenCV names RGGB by its second row
+  Image<float> out(mosaic.width, mosaic.height, 3);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        out.pixel(x, y)[c] = rgb.at<cv::Vec<std::uint16_t, 3>>(y, x)[c] / 65535.0f;
+  return out;
 }
 
 }  // namespace
@@ -78,6 +125,7 @@ void validate(const SensorModel& s) {
   require(s.adaptation >= 0 && s.adaptation <= 60, "adaptation must be in 0..60 seconds");
   require(s.grey > 0 && s.grey <= 0.5, "grey must be in (0, 0.5]");
   require(s.glare >= 0 && s.glare <= 0.5, "glare must be in 0..0.5");
+  require(std::abs(s.chromatic_aberration) <= 0.05, "chromatic_aberration must be in -0.05..0.05");
 }
 
 double electrons_per_nit_second(const SensorModel& s) {
@@ -117,8 +165,9 @@ Image<float> lens_image(ImageView<const float> nits, const Projection& camera,
     for (std::size_t i = 0; i < falloff.data.size(); ++i)
       for (int c = 0; c < 3; ++c) out.data[3 * i + c] *= falloff.data[i];
   }
-  if (s.glare <= 0) return out;
   const cv::Mat image(out.height, out.width, CV_32FC3, out.data.data());
+  if (s.chromatic_aberration != 0) shift_colours(image, s.chromatic_aberration);
+  if (s.glare <= 0) return out;
   cv::Mat spread = cv::Mat::zeros(image.size(), CV_32FC3), blurred;
   for (double sigma : kGlareSigmas) {
     cv::GaussianBlur(image, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT);
@@ -130,21 +179,22 @@ Image<float> lens_image(ImageView<const float> nits, const Projection& camera,
 
 Image<float> sensor_raw(ImageView<const float> sensor_nits, const SensorModel& s, const Exposure& e,
                         double shutter, std::uint64_t seed) {
-  Image<float> raw(sensor_nits.width, sensor_nits.height, 3);
+  Image<float> raw(sensor_nits.width, sensor_nits.height, s.bayer ? 1 : 3);
   const double electrons_per_nit = electrons_per_nit_second(s) * shutter * e.integration;
   const double to_raw = e.gain / s.full_well;  // the converter saturates at full_well / gain
   tbb::parallel_for(0, raw.height, [&](int y) {
     for (int x = 0; x < raw.width; ++x) {
       Random random(mix_bits(seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x))));
-      for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < raw.channels; ++k) {
+        const int c = s.bayer ? bayer_channel(x, y) : k;
         const double mean = std::max(0.0, double(sensor_nits.pixel(x, y)[c])) * electrons_per_nit;
         double electrons = s.noise ? poisson(random, mean) + s.read_noise * normal(random) : mean;
         electrons = std::clamp(electrons, 0.0, s.full_well);
-        raw.pixel(x, y)[c] = float(std::min(1.0, electrons * to_raw));
+        raw.pixel(x, y)[k] = float(std::min(1.0, electrons * to_raw));
       }
     }
   });
-  return raw;
+  return s.bayer ? demosaic(raw) : raw;
 }
 
 float filmic(float x) {

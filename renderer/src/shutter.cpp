@@ -1,5 +1,6 @@
 #include "flowscape/renderer/shutter.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +13,62 @@ namespace {
 void accumulate(Image<float>& sum, const Image<float>& add, float weight) {
   for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += weight * add.data[i];
 }
+
+FramePair still_at(double time, const CameraTrack& camera) {
+  return {time, time, camera(time), camera(time)};
+}
+
+// sum += weight x step, the normals summed, the variances weight^2 x (of a mean of independent
+// means); an empty sum takes the step.
+void add_step(ColorLayers& sum, ColorLayers step, float weight) {
+  const bool first = sum.direct.data.empty();
+  for (auto [to, from] : {std::pair{&sum.direct, &step.direct},
+                          {&sum.indirect, &step.indirect},
+                          {&sum.specular, &step.specular},
+                          {&sum.other, &step.other},
+                          {&sum.albedo, &step.albedo}}) {
+    if (first) *to = Image<float>(from->width, from->height, from->channels);
+    accumulate(*to, *from, weight);
+  }
+  if (first)
+    sum.normal = Image<float>(step.normal.width, step.normal.height, 3),
+    sum.variance = Image<float>(step.variance.width, step.variance.height, 3);
+  accumulate(sum.normal, step.normal, 1), accumulate(sum.variance, step.variance, weight * weight);
+}
+
+// Calls step(time, its options, its weight) for each step of the shutter.
+template <class Step>
+void for_each_step(const Shutter& shutter, const RenderOptions& options, Step&& step) {
+  const int steps = shutter_steps(options);
+  RenderOptions step_options = options;
+  step_options.samples_per_pixel = options.samples_per_pixel / steps;
+  if (options.indirect_samples > 0)
+    step_options.indirect_samples = options.indirect_samples / steps;
+  int k = 0;
+  for (double time : shutter_times(shutter, steps)) {
+    step_options.seed = derived_seed(options.seed, std::uint64_t(k++), 7);
+    step(time, step_options, 1.0f / float(steps));
+  }
+}
+
+// The depth of a pixel's centre ray summed where finite, and how often it was.
+struct DepthSum {
+  Image<float> sum, count;
+  void add(const Image<float>& depth) {
+    if (sum.data.empty())
+      sum = Image<float>(depth.width, depth.height, 1),
+      count = Image<float>(depth.width, depth.height, 1);
+    for (std::size_t i = 0; i < sum.data.size(); ++i)
+      if (std::isfinite(depth.data[i])) sum.data[i] += depth.data[i], ++count.data[i];
+  }
+  Image<float> mean() const {
+    Image<float> out = sum;
+    for (std::size_t i = 0; i < out.data.size(); ++i)
+      out.data[i] =
+          count.data[i] > 0 ? sum.data[i] / count.data[i] : std::numeric_limits<float>::infinity();
+    return out;
+  }
+};
 
 void put_face(Image<float>& stacked, Face face, const Image<float>& image) {
   if (stacked.data.empty()) stacked = Image<float>(image.width, 6 * image.width, image.channels);
@@ -45,61 +102,43 @@ std::vector<double> shutter_times(const Shutter& shutter, int steps) {
 
 ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, const RenderOptions& options) {
-  const int steps = shutter_steps(options);
-  RenderOptions step_options = options;
-  step_options.samples_per_pixel = options.samples_per_pixel / steps;
-  if (options.indirect_samples > 0)
-    step_options.indirect_samples = options.indirect_samples / steps;
   ColorLayers sum;
-  const float weight = 1.0f / float(steps);
-  int k = 0;
-  for (double time : shutter_times(shutter, steps)) {
-    step_options.seed = derived_seed(options.seed, std::uint64_t(k++), 7);
-    const ColorLayers step =
-        renderer.color_layers(projection, {time, time, camera(time), camera(time)}, step_options);
-    if (sum.direct.data.empty()) {
-      sum = step;
-      for (Image<float>* layer :
-           {&sum.direct, &sum.indirect, &sum.specular, &sum.other, &sum.albedo, &sum.variance})
-        for (float& value : layer->data) value *= layer == &sum.variance ? weight * weight : weight;
-      continue;
-    }
-    accumulate(sum.direct, step.direct, weight), accumulate(sum.indirect, step.indirect, weight);
-    accumulate(sum.specular, step.specular, weight), accumulate(sum.other, step.other, weight);
-    accumulate(sum.albedo, step.albedo, weight), accumulate(sum.normal, step.normal, 1);
-    accumulate(sum.variance, step.variance, weight * weight);  // of a mean of independent means
-  }
+  for_each_step(shutter, options, [&](double time, const RenderOptions& step, float weight) {
+    add_step(sum, renderer.color_layers(projection, still_at(time, camera), step), weight);
+  });
   return sum;
 }
 
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, int steps) {
-  Image<float> sum(projection.width, projection.height, 1), count(sum.width, sum.height, 1);
-  for (double time : shutter_times(shutter, steps)) {
-    const GroundTruth truth =
-        renderer.ground_truth(projection, FramePair{time, time, camera(time), camera(time)});
-    for (std::size_t i = 0; i < sum.data.size(); ++i)
-      if (std::isfinite(truth.depth.data[i])) sum.data[i] += truth.depth.data[i], ++count.data[i];
-  }
-  for (std::size_t i = 0; i < sum.data.size(); ++i)
-    sum.data[i] =
-        count.data[i] > 0 ? sum.data[i] / count.data[i] : std::numeric_limits<float>::infinity();
-  return sum;
+  DepthSum depth;
+  for (double time : shutter_times(shutter, steps))
+    depth.add(renderer.ground_truth(projection, still_at(time, camera)).depth);
+  return depth.mean();
 }
 
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
                        const CameraTrack& camera, const RenderOptions& options) {
+  // step by step, every face at each (the scene posed once per step)
+  std::array<ColorLayers, 6> faces;
+  std::array<DepthSum, 6> depths;
+  for_each_step(shutter, options, [&](double time, const RenderOptions& step, float weight) {
+    for (Face face : kFaces) {
+      const Projection projection = Projection::cube_face(face, face_size);
+      const int f = int(face);
+      add_step(faces[f], renderer.color_layers(projection, still_at(time, camera), step), weight);
+      depths[f].add(renderer.ground_truth(projection, still_at(time, camera)).depth);
+    }
+  });
   CubeFrame cube;
   ColorLayers& c = cube.color;
   for (Face face : kFaces) {
-    const Projection projection = Projection::cube_face(face, face_size);
-    const ColorLayers layers = shutter_layers(renderer, projection, shutter, camera, options);
+    const ColorLayers& layers = faces[int(face)];
     put_face(c.direct, face, layers.direct), put_face(c.indirect, face, layers.indirect);
     put_face(c.specular, face, layers.specular), put_face(c.other, face, layers.other);
     put_face(c.albedo, face, layers.albedo), put_face(c.normal, face, layers.normal);
     put_face(c.variance, face, layers.variance);
-    put_face(cube.truth.depth, face,
-             shutter_depth(renderer, projection, shutter, camera, shutter_steps(options)));
+    put_face(cube.truth.depth, face, depths[int(face)].mean());
   }
   cube.truth.instance = Image<std::uint16_t>(face_size, 6 * face_size, 1);
   return cube;

@@ -388,6 +388,34 @@ def test_the_plugin_hands_out_the_kinds_asked_for(all_kinds_release):
         flowscape.FlowScape(all_kinds_release, "train", outputs=("flow_gap4",))
 
 
+def test_the_plugin_reads_the_final_pass_as_sintel_passes_are_read(all_kinds_release,
+                                                                    tiny_release):
+    clean = flowscape.FlowScape(all_kinds_release, "train")
+    final = flowscape.FlowScape(all_kinds_release, "train", pass_name="final")
+    assert len(final) == len(clean)
+    c, f = clean.sample(0), final.sample(0)
+    assert f["img1"].shape == c["img1"].shape and not np.array_equal(f["img1"], c["img1"])
+    assert np.array_equal(f["flow"], c["flow"]) and np.array_equal(f["valid"], c["valid"])
+    with pytest.raises(ValueError, match="no final pass"):
+        flowscape.FlowScape(tiny_release, "train", pass_name="final")
+    # gt_quality scores either pass; the PanoFlow tree takes either
+    scored = subprocess.run([f"{BIN}/gt_quality", str(all_kinds_release), "-q", "--pass", "final"],
+                            check=True, capture_output=True, text=True).stdout
+    assert any(line.split()[:2] == ["all", "4"] or line.startswith("all ") for line in scored.splitlines())
+    refused = subprocess.run([f"{BIN}/gt_quality", str(tiny_release), "-q", "--pass", "final"],
+                             capture_output=True, text=True)
+    assert refused.returncode == 1 and "no final pass" in refused.stderr
+    subprocess.run([f"{BIN}/flowscape_split", str(all_kinds_release), "--pass", "final"],
+                   check=True, capture_output=True)
+    tree = json.load(open(os.path.join(all_kinds_release, "panoflow", "flowscape.json")))
+    assert tree["pass"] == "final"
+    subprocess.run([f"{BIN}/flowscape_split", str(all_kinds_release)], check=True,
+                   capture_output=True)  # back to the clean tree the other tests read
+
+    with pytest.raises(ValueError, match="pass_name must be"):
+        flowscape.FlowScape(all_kinds_release, "train", pass_name="albedo")
+
+
 def _boxes_by_numpy(ids, panorama):
     """[id, x0, y0, x1, y1] per instance, x1/y1 exclusive; on a panorama the fewest columns."""
     boxes = []

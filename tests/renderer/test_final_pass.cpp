@@ -210,6 +210,16 @@ TEST_CASE("vignetting follows the lens's relative illumination; the tone curve r
   const double tan_theta = std::hypot(31.5, 31.5) / 32, cos_theta = 1 / std::hypot(1, tan_theta);
   CHECK(seen.pixel(0, 0)[0] == Approx(std::pow(cos_theta, 4)).epsilon(1e-3));
   CHECK(seen.pixel(32, 32)[0] == Approx(1).epsilon(1e-3));
+  // an equidistant fisheye (r = f theta): its solid angle per pixel, sin(theta) / theta
+  const Projection fisheye =
+      Projection::of_lens(make_lens("equidistant", {{"width", 64},
+                                                    {"height", 64},
+                                                    {"K", {{20, 0, 32}, {0, 20, 32}, {0, 0, 1}}},
+                                                    {"max_angle_degrees", 100}}),
+                          Mat3::Identity());
+  const Image<float> wide = lens_image(flat.view(), fisheye, sensor);
+  const double theta = (50.5 - 32) / 20;  // the pixel (50, 32): 18.5 px right of the centre
+  CHECK(wide.pixel(50, 32)[0] == Approx(std::sin(theta) / theta).epsilon(0.01));
   const Image<float> erp = lens_image(flat.view(), Projection::equirectangular(32), sensor);
   for (float value : erp.data) CHECK(value == 1.0f);  // a panorama has no lens
   // the tone curve: black stays black, grey shows as about 20 % grey, saturation near white
@@ -234,4 +244,40 @@ TEST_CASE("glare spreads a share of a bright light round it and keeps its energy
   CHECK(total == Approx(1000).epsilon(0.01));
   CHECK(seen.pixel(128, 128)[0] > 0.95f * 1000);
   CHECK(seen.pixel(128, 138)[0] > 0);  // a halo ten pixels away
+}
+
+TEST_CASE("lateral chromatic aberration moves red out and blue in by their share of the radius") {
+  SensorModel sensor;
+  sensor.vignetting = false, sensor.glare = 0, sensor.chromatic_aberration = 0.05;
+  Image<float> dot(128, 128, 3, 0.0f);
+  for (int c = 0; c < 3; ++c) dot.pixel(84, 64)[c] = 1;  // its centre 20.5 px right of the image's
+  const Image<float> seen = lens_image(dot.view(), Projection::pinhole(128, 128, 60), sensor);
+  const auto centroid = [&](int c) {
+    double sum = 0, moment = 0;
+    for (int y = 0; y < 128; ++y)
+      for (int x = 0; x < 128; ++x)
+        sum += seen.pixel(x, y)[c], moment += (x + 0.5) * seen.pixel(x, y)[c];
+    return moment / sum;
+  };
+  CHECK(centroid(0) == Approx(64 + 20.5 * 1.05).margin(0.05));
+  CHECK(centroid(1) == Approx(64 + 20.5).margin(1e-6));
+  CHECK(centroid(2) == Approx(64 + 20.5 * 0.95).margin(0.05));
+}
+
+TEST_CASE("a Bayer mosaic demosaicked gives a flat colour back, channel for channel") {
+  SensorModel sensor;
+  sensor.noise = false;
+  const double shutter = 1 / 60.0;
+  const Exposure e = auto_exposure(sensor, {}, 100, 0, shutter);
+  Image<float> light(32, 32, 3);
+  for (int i = 0; i < 32 * 32; ++i)
+    light.data[3 * i] = 40, light.data[3 * i + 1] = 100, light.data[3 * i + 2] = 250;
+  const Image<float> plain = sensor_raw(light.view(), sensor, e, shutter, 1);
+  sensor.bayer = true;
+  const Image<float> mosaicked = sensor_raw(light.view(), sensor, e, shutter, 1);
+  REQUIRE(mosaicked.channels == 3);
+  for (int y = 2; y < 30; ++y)
+    for (int x = 2; x < 30; ++x)
+      for (int c = 0; c < 3; ++c)
+        CHECK(mosaicked.pixel(x, y)[c] == Approx(plain.pixel(x, y)[c]).margin(1e-4));
 }

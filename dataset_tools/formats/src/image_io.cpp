@@ -8,6 +8,10 @@
 #include <cstring>
 #include <fstream>
 #include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <vector>
 
 namespace flowscape {
 
@@ -236,5 +240,20 @@ template void write_image(const std::filesystem::path&, ImageView<const std::uin
                           const std::vector<std::string>&);
 template void write_image(const std::filesystem::path&, ImageView<const float>,
                           const std::vector<std::string>&);
+
+Image<std::uint8_t> jpeg_round_trip(ImageView<const std::uint8_t> rgb, int quality) {
+  if (rgb.channels != 3 || quality < 1 || quality > 100)
+    throw std::invalid_argument("jpeg_round_trip: an RGB image and a quality in 1..100");
+  cv::Mat bgr;
+  cv::cvtColor(cv::Mat(rgb.height, rgb.width, CV_8UC3, const_cast<std::uint8_t*>(rgb.data)), bgr,
+               cv::COLOR_RGB2BGR);
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, quality});
+  cv::Mat decoded = cv::imdecode(bytes, cv::IMREAD_COLOR);
+  Image<std::uint8_t> out(rgb.width, rgb.height, 3);
+  cv::cvtColor(decoded, cv::Mat(out.height, out.width, CV_8UC3, out.data.data()),
+               cv::COLOR_BGR2RGB);
+  return out;
+}
 
 }  // namespace flowscape

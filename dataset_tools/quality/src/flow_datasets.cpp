@@ -69,11 +69,14 @@ ReleaseLayout release_layout_of(const fs::path& root) {
 // The pairs of every sequence whose flow file exists (a release may be unfinished), in the ERP
 // or, for another rig, in each of its cameras (grouped per sequence and camera), with the
 // backward flow of each pair's second frame where the release has it.
-FlowDataset flowscape_release(const fs::path& root) {
+FlowDataset flowscape_release(const fs::path& root, const std::string& pass) {
   FlowDataset d{"flowscape", {}};
   const ReleaseLayout layout = release_layout_of(root);
   const bool backward = layout.has("flow_backward") && layout.has("valid_backward");
-  const ReleaseKind color = output_kind("color"), flow = output_kind("flow"),
+  const std::string image_kind = pass == "final" ? "final" : "color";
+  if (!layout.has(image_kind))
+    throw FileError(root, "the release has no final pass (gen_flowscape --outputs final makes it)");
+  const ReleaseKind color = output_kind(image_kind), flow = output_kind("flow"),
                     valid = output_kind("valid"), back = output_kind("flow_backward"),
                     back_valid = output_kind("valid_backward");
   for (const fs::path& seq : sorted_dirs(sequence_dir(root, ""))) {
@@ -189,11 +192,18 @@ bool has_panoflow(const fs::path& root) {
 
 }  // namespace
 
-FlowDataset find_flow_dataset(const fs::path& root) {
+FlowDataset find_flow_dataset(const fs::path& root, const std::string& pass) {
+  if (pass != "clean" && pass != "final")
+    throw std::invalid_argument("the pass is clean or final, not \"" + pass + "\"");
   if (!fs::is_directory(root)) throw FileError(root, "no such folder");
+  const bool release = fs::is_directory(sequence_dir(root, ""));
+  if (pass == "final" && !release)
+    throw FileError(root,
+                    "--pass final needs a FlowScape release (Sintel's passes are scored "
+                    "both, as categories)");
   FlowDataset d;
-  if (fs::is_directory(sequence_dir(root, "")))
-    d = flowscape_release(root);
+  if (release)
+    d = flowscape_release(root, pass);
   else if (fs::is_directory(root / "panoflow"))
     d = panoflow_tree(root / "panoflow");
   else if (fs::is_directory(root / "training" / "flow"))

@@ -39,7 +39,8 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
   visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
   visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
-  visit("vignetting", c.vignetting);
+  visit("vignetting", c.vignetting), visit("chromatic_aberration", c.chromatic_aberration);
+  visit("bayer", c.bayer), visit("jpeg_quality", c.jpeg_quality);
 }
 
 template <class T>
@@ -82,6 +83,8 @@ void validate(const ReleaseConfig& c) {
   require(c.shutter_angle >= 1 && c.shutter_angle <= 360, "shutter_angle must be in 1..360");
   require(c.pixel_pitch >= 0.5 && c.pixel_pitch <= 50, "pixel_pitch must be in 0.5..50");
   require(c.lens_glare >= 0 && c.lens_glare <= 0.5, "lens_glare must be in 0..0.5");
+  require(std::abs(c.chromatic_aberration) <= 0.05, "chromatic_aberration must be in -0.05..0.05");
+  require(c.jpeg_quality >= 0 && c.jpeg_quality <= 100, "jpeg_quality must be in 0..100");
   for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");

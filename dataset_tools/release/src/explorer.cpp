@@ -106,7 +106,7 @@ Image<std::uint8_t> kind_preview(const fs::path& dir, const ReleaseKind& kind, c
                                 std::to_string(flow.uv.height) + ")");
     return flow_to_color(flow.uv.view(), valid.view(), {});
   }
-  if (name == "color") return read_image<std::uint8_t>(file);
+  if (name == "color" || name == "final") return read_image<std::uint8_t>(file);
   if (name == "semantic") return table_colours(table, read_image<std::uint8_t>(file).view());
   if (kind.row->pixel == PixelType::UInt8) return mask_preview(read_image<std::uint8_t>(file));
   if (kind.row->pixel == PixelType::UInt16)

@@ -1,8 +1,10 @@
 #include "flowscape/release/final_pass.h"
 
 #include <cmath>
+#include <vector>
 
 #include "flowscape/core/random.h"
+#include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 
 namespace flowscape {
@@ -24,6 +26,7 @@ SensorModel release_sensor(const ReleaseConfig& c) {
   SensorModel sensor;
   sensor.pixel_pitch = c.pixel_pitch * 1e-6;
   sensor.noise = c.sensor_noise, sensor.vignetting = c.vignetting, sensor.glare = c.lens_glare;
+  sensor.chromatic_aberration = c.chromatic_aberration, sensor.bayer = c.bayer;
   return sensor;
 }
 
@@ -32,15 +35,18 @@ Shutter frame_shutter(const ReleaseConfig& config, int frame) {
 }
 
 Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
-                        const Exposure& previous, ImageView<const std::uint8_t> clean, int frame) {
-  Image<float> nits(clean.width, clean.height, 3);
+                        const Exposure& previous, ImageView<const std::uint8_t> clean,
+                        const Projection& camera, int frame) {
+  std::vector<float> covered;  // the nits of the pixels the camera has an image at
   const double scale = nits_per_value(sequence);
   for (int y = 0; y < clean.height; ++y)
     for (int x = 0; x < clean.width; ++x)
-      for (int c = 0; c < 3; ++c)
-        nits.pixel(x, y)[c] = float(srgb8_to_linear(clean.pixel(x, y)[c]) * scale);
+      if (!camera.ray(Vec2(x + 0.5, y + 0.5)).isZero())
+        for (int c = 0; c < 3; ++c)
+          covered.push_back(float(srgb8_to_linear(clean.pixel(x, y)[c]) * scale));
+  const ImageView<const float> nits{int(covered.size() / 3), 1, 3, covered.data()};
   const Shutter shutter = frame_shutter(config, frame);
-  return auto_exposure(release_sensor(config), previous, key_luminance(nits.view()), 1 / kFrameRate,
+  return auto_exposure(release_sensor(config), previous, key_luminance(nits), 1 / kFrameRate,
                        shutter.close - shutter.open);
 }
 
@@ -70,7 +76,7 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
                             ImageView<const float> color, const Projection& camera, bool lens,
                             const Exposure& exposure, int frame, int view) {
   SensorModel sensor = release_sensor(config);
-  sensor.vignetting = sensor.vignetting && lens;
+  if (!lens) sensor.vignetting = false, sensor.chromatic_aberration = 0;
   Image<float> nits(color.width, color.height, 3);
   const double scale = nits_per_value(sequence);
   for (std::size_t i = 0; i < nits.data.size(); ++i) nits.data[i] = float(color.data[i] * scale);
@@ -79,7 +85,8 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
       sensor_raw(lens_image(nits.view(), camera, sensor).view(), sensor, exposure,
                  shutter.close - shutter.open,
                  derived_seed(sequence.color_seed(frame), std::uint64_t(view), 3));
-  return linear_to_srgb8(tone_map(raw.view(), sensor).view());
+  const Image<std::uint8_t> display = linear_to_srgb8(tone_map(raw.view(), sensor).view());
+  return config.jpeg_quality > 0 ? jpeg_round_trip(display.view(), config.jpeg_quality) : display;
 }
 
 nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposure>& exposures) {
@@ -102,7 +109,10 @@ nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposur
             {"grey", s.grey},
             {"glare", s.glare},
             {"noise", s.noise},
-            {"vignetting", s.vignetting}}},
+            {"vignetting", s.vignetting},
+            {"chromatic_aberration", s.chromatic_aberration},
+            {"bayer", s.bayer}}},
+          {"jpeg_quality", config.jpeg_quality},
           {"exposures", per_frame}};
 }
 

@@ -113,9 +113,11 @@ void write_split_files(const fs::path& release, const Split& split) {
 namespace {
 
 nlohmann::json to_json(const PanoflowOptions& o) {
-  return {{"flow", o.flow == FlowMode::Classic ? "classic" : "360"},
-          {"sky", o.sky_invalid ? "invalid" : "kept"},
-          {"occluded", o.occluded_invalid ? "invalid" : "kept"}};
+  nlohmann::json j = {{"flow", o.flow == FlowMode::Classic ? "classic" : "360"},
+                      {"sky", o.sky_invalid ? "invalid" : "kept"},
+                      {"occluded", o.occluded_invalid ? "invalid" : "kept"}};
+  if (o.final_pass) j["pass"] = "final";  // a clean tree's record as it was
+  return j;
 }
 
 }  // namespace
@@ -123,8 +125,10 @@ nlohmann::json to_json(const PanoflowOptions& o) {
 std::vector<std::string> write_panoflow_tree(const fs::path& release, const Split& split,
                                              const PanoflowOptions& options) {
   const fs::path tree = release / "panoflow", conventions = tree / "flowscape.json";
+  if (options.final_pass && !read_release_layout(release).has("final"))
+    throw FileError(release, "the release has no final pass (gen_flowscape --outputs final)");
   if (fs::exists(tree) && (!fs::exists(conventions) || read_json(conventions) != to_json(options)))
-    fs::remove_all(tree);  // made with other conventions: none of its flow files can be kept
+    fs::remove_all(tree);  // made with other conventions or pass: none of its files can be kept
   remove_temporary_files_under(tree);
   struct Job {
     fs::path sequence, target;
@@ -159,7 +163,8 @@ std::vector<std::string> write_panoflow_tree(const fs::path& release, const Spli
     if (job.flow)
       write_flo(target, panoflow_flow(job.sequence, job.frame, options).view());
     else
-      write_image(target, read_image<std::uint8_t>(erp_file(job.sequence, "color", job.frame)));
+      write_image(target, read_image<std::uint8_t>(erp_file(
+                              job.sequence, options.final_pass ? "final" : "color", job.frame)));
   });
   write_text(conventions, to_json(options).dump(1) + "\n");
   return empty;

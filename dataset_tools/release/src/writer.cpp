@@ -159,7 +159,7 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
   Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
   FinalFlowscape final;
   if (exposure) {
-    *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), frame);
+    *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), erp, frame);
     if (map) {
       final = final_flowscape(config, sequence, renderer, *map, *exposure, frame);
     } else {
@@ -194,7 +194,8 @@ FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout
     Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
     if (exposure) {
       if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
-        *exposure = exposure_after(config, sequence, *exposure, clean.view(), frame);
+        *exposure =
+            exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
       const Eigen::Translation3d mount(camera.position);
       const Image<float> linear = final_color(
           config, sequence, renderer, camera.projection,
@@ -274,7 +275,8 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
     const nlohmann::json now = to_json(ReleaseConfig{});
     for (const char* key : {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare",
-                            "vignetting"})  // the defaults hold what releases without them did
+                            "vignetting", "chromatic_aberration", "bayer",
+                            "jpeg_quality"})  // the defaults hold what releases without them did
       if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;
@@ -314,12 +316,15 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const CubeToErp map = faces && !frames_to_render.empty()
                             ? make_cube_to_erp(config.face_size, config.height)
                             : CubeToErp{};
+  const Projection metering = rig.cameras.empty() ? Projection::equirectangular(config.height)
+                                                  : rig.cameras.front().projection;
   for (int f = 0; f < config.frames; ++f) {
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
       if (final)
         exposures[std::size_t(f)] = exposure = exposure_after(
             config, sequence, exposure,
-            read_image<std::uint8_t>(dir / frame_file(output_kind("color"), view, f)).view(), f);
+            read_image<std::uint8_t>(dir / frame_file(output_kind("color"), view, f)).view(),
+            metering, f);
       continue;
     }
     if (!renderer) renderer = std::make_unique<Renderer>(sequence.city.scene);

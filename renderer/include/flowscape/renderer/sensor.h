@@ -28,6 +28,12 @@ struct SensorModel {
   double glare = 0.02;     // share of the light the lens scatters round its path (bloom)
   bool noise = true;       // shot and read noise
   bool vignetting = true;  // a real lens's relative illumination (not the ERP's, not cube faces')
+  // Lateral chromatic aberration of a real lens: red magnified and blue shrunk by this share about
+  // the image centre (0.002: at 500 pixels from the centre, red and blue 1 pixel out each way).
+  double chromatic_aberration = 0;
+  // A Bayer colour filter (RGGB): each pixel counts one channel's electrons, then OpenCV's
+  // demosaicking fills in the other two.
+  bool bayer = false;
 };
 // Throws std::invalid_argument naming the value.
 void validate(const SensorModel& sensor);
@@ -58,16 +64,19 @@ struct Exposure {
 Exposure auto_exposure(const SensorModel& sensor, const Exposure& previous, double measured,
                        double elapsed, double shutter);
 
-// The light on the sensor: radiance (cd/m^2, RGB) times the lens's relative illumination
-// (cos(theta) x the pixel's solid angle over the centre's: cos^4 for a pinhole; nothing for an
-// ERP or a cube face, virtual cameras without a lens) plus `glare` of it spread by a wide
-// point-spread function (three Gaussians, 2, 8 and 32 pixels).
+// The light on the sensor: radiance (cd/m^2, RGB) times the lens's relative illumination (the
+// pixel's solid angle over the centre's, times cos(theta) for a rectilinear lens: cos^4 for a
+// pinhole, sin(theta) / theta for an equidistant fisheye; nothing for an ERP or a cube face,
+// virtual cameras without a lens), red and blue scaled about the centre by
+// 1 +- chromatic_aberration, plus `glare` of it spread by a wide point-spread function (three
+// Gaussians, 2, 8 and 32 pixels).
 Image<float> lens_image(ImageView<const float> nits, const Projection& camera,
                         const SensorModel& sensor);
 
 // The raw image: each channel's electrons (Poisson with the light's mean over the integration
 // time, plus Gaussian read noise; seeded per pixel by `seed`) clipped to the full well, times the
 // gain, over the full well, clipped at 1 (the converter's range): the adapted key reads `grey`.
+// With `bayer`, each pixel counts only its filter's channel and the mosaic is demosaicked.
 Image<float> sensor_raw(ImageView<const float> sensor_nits, const SensorModel& sensor,
                         const Exposure& exposure, double shutter, std::uint64_t seed);
 

@@ -28,6 +28,10 @@ AnyImage read_any_image(const std::filesystem::path& path);
 template <class T>
 Image<T> read_image(const std::filesystem::path& path);
 
+// An 8-bit RGB image after JPEG compression at `quality` (1-100, libjpeg's scale through OpenCV,
+// 4:2:0 chroma) and decompression: the artefacts a camera's encoder leaves.
+Image<std::uint8_t> jpeg_round_trip(ImageView<const std::uint8_t> rgb, int quality);
+
 // Writes in T's format (the file type from the extension: .png, .jpg, .exr, ...), atomically.
 // Channel names are optional (formats like EXR store them).
 template <class T>

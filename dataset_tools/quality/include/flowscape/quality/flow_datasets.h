@@ -35,7 +35,9 @@ struct FlowDataset {
 // Throws FileError when the folder holds none of the known layouts. A FlowScape release's kinds and
 // conventions are read from its manifest.json (one without: FlowScape's own); flow it does not
 // know how to read (another direction, units or axes) is a FileError naming the manifest.
-FlowDataset find_flow_dataset(const std::filesystem::path& root);
+// `pass`: "clean" or, for a FlowScape release made with it, "final" (its final pass's images; the
+// flow is the same); std::invalid_argument for another layout or name.
+FlowDataset find_flow_dataset(const std::filesystem::path& root, const std::string& pass = "clean");
 // Images sorted by name pair up as (k, k + 1) with the k-th flow file: one image more than flows.
 // Patterns use * and ? in the file name part (the folder part is taken literally).
 FlowDataset glob_flow_dataset(const std::string& images, const std::string& flows, bool panorama);

@@ -80,6 +80,11 @@ struct ReleaseConfig {
   double pixel_pitch = 3;
   double lens_glare = 0.02;
   bool vignetting = true;
+  // More of the final pass's camera: lateral chromatic aberration on real lenses (share of the
+  // radius, |k| <= 0.05), a Bayer mosaic demosaicked, JPEG compression at a quality (0: none).
+  double chromatic_aberration = 0;
+  bool bayer = false;
+  int jpeg_quality = 0;
   std::vector<int> flow_gaps{1};
   // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
   // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),

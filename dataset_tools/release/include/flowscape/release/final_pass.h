@@ -19,10 +19,12 @@ SensorModel release_sensor(const ReleaseConfig& config);
 Shutter frame_shutter(const ReleaseConfig& config, int frame);
 
 // The auto-exposure after a frame, its key measured on the frame's clean colour as written (8-bit
-// sRGB, brought back to cd/m^2 through the sequence's exposure): the same bytes whether the
-// sequence was rendered in one go or resumed.
+// sRGB, brought back to cd/m^2 through the sequence's exposure) where `camera` has an image (not
+// outside a fisheye's circle): the same bytes whether the sequence was rendered in one go or
+// resumed.
 Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
-                        const Exposure& previous, ImageView<const std::uint8_t> clean, int frame);
+                        const Exposure& previous, ImageView<const std::uint8_t> clean,
+                        const Projection& camera, int frame);
 
 // One view's colour over the frame's shutter, denoised (linear, the clean pass's units).
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,

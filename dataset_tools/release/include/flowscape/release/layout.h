@@ -85,7 +85,8 @@ inline constexpr std::array<OutputKind, 12> kOutputKinds{{
      Direction::None, false, false,
      "8-bit sRGB PNG, the final pass: motion blur traced over the shutter, auto-exposure, lens "
      "glare and vignetting, shot and read noise, a filmic tone curve (meta.json `final`); the "
-     "ground truth is the frame time's"},
+     "ground truth is the frame time's; opt-in (--outputs final): a second path trace, about "
+     "2.5x the clean release's time"},
 }};
 
 // The row named `name`; throws std::invalid_argument for other names.

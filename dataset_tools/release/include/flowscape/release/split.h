@@ -38,6 +38,7 @@ struct PanoflowOptions {
   FlowMode flow = FlowMode::Classic;
   bool sky_invalid = true;
   bool occluded_invalid = false;  // also pixels whose target is hidden in the next frame
+  bool final_pass = false;        // the images of the final pass (output kind "final"), not clean
 };
 // The PanoFlow tree: panoflow/{train,test}/{cloud,fog,rain,sunny} always all there (sequences of
 // other presets filed under their base weather), JPEG images, flow in `options`' conventions, and

@@ -1,0 +1,34 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+
+#include "flowscape/formats/image_io.h"
+
+using namespace flowscape;
+
+TEST_CASE("JPEG compression leaves its artefacts, fewer at a higher quality, the same every time") {
+  Image<std::uint8_t> image(64, 64, 3);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = image.pixel(x, y);
+      p[0] = std::uint8_t(4 * x), p[1] = std::uint8_t(4 * y),
+      p[2] = std::uint8_t(128 + 60 * std::sin(x / 5.0) * std::cos(y / 7.0));
+    }
+  const auto error = [&](int quality) {
+    const Image<std::uint8_t> seen = jpeg_round_trip(image.view(), quality);
+    double sum = 0;
+    for (std::size_t i = 0; i < seen.data.size(); ++i)
+      sum += std::abs(int(seen.data[i]) - int(image.data[i]));
+    return sum / seen.data.size();
+  };
+  CHECK(error(95) < 3);
+  CHECK(error(10) > 2 * error(95));
+  CHECK(jpeg_round_trip(image.view(), 30).data == jpeg_round_trip(image.view(), 30).data);
+  // red stays red: the channel order survives OpenCV's BGR
+  Image<std::uint8_t> red(16, 16, 3);
+  for (int i = 0; i < 256; ++i) red.data[3 * i] = 200;
+  const Image<std::uint8_t> seen = jpeg_round_trip(red.view(), 90);
+  CHECK(seen.pixel(8, 8)[0] > 180);
+  CHECK(seen.pixel(8, 8)[2] < 20);
+  CHECK_THROWS(jpeg_round_trip(red.view(), 0));
+}
