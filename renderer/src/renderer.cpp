@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "cube_faces.h"
 #include "embree_scene.h"
 #include "flowscape/stitcher/geometry.h"
 #include "image_textures.h"
@@ -234,16 +235,6 @@ GroundTruth Renderer::ground_truth_at(const Projection& projection, const TruthR
   return gt;
 }
 
-namespace {
-
-template <class T>
-void put_face(Image<T>& cube, Face face, const Image<T>& image) {
-  if (cube.data.empty()) cube = Image<T>(image.width, 6 * image.width, image.channels);
-  std::copy(image.data.begin(), image.data.end(), face_view(cube.view(), face).data);
-}
-
-}  // namespace
-
 CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames,
                       const RenderOptions* color_options, FlowMode mode) {
   return render_cube(renderer, face_size, TruthRequest{frames}, color_options, mode);
@@ -268,12 +259,7 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& req
                                 {&gt.shading_normal, &all.shading_normal}})
       if (!image->data.empty()) put_face(*faces, face, *image);
     if (!color_options) continue;
-    ColorLayers layers = renderer.color_layers(projection, request.pair, *color_options);
-    ColorLayers& c = cube.color;
-    put_face(c.direct, face, layers.direct), put_face(c.indirect, face, layers.indirect);
-    put_face(c.specular, face, layers.specular), put_face(c.other, face, layers.other);
-    put_face(c.albedo, face, layers.albedo), put_face(c.normal, face, layers.normal);
-    put_face(c.variance, face, layers.variance);
+    put_face(cube.color, face, renderer.color_layers(projection, request.pair, *color_options));
   }
   return cube;
 }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "cube_faces.h"
 #include "flowscape/core/random.h"
-#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 namespace {
@@ -70,11 +70,6 @@ struct DepthSum {
   }
 };
 
-void put_face(Image<float>& stacked, Face face, const Image<float>& image) {
-  if (stacked.data.empty()) stacked = Image<float>(image.width, 6 * image.width, image.channels);
-  std::copy(image.data.begin(), image.data.end(), face_view(stacked.view(), face).data);
-}
-
 }  // namespace
 
 Shutter centred_shutter(double time, double angle) {
@@ -118,7 +113,7 @@ Image<float> shutter_depth(Renderer& renderer, const Projection& projection, con
 }
 
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
-                       const CameraTrack& camera, const RenderOptions& options) {
+                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide) {
   // step by step, every face at each (the scene posed once per step)
   std::array<ColorLayers, 6> faces;
   std::array<DepthSum, 6> depths;
@@ -127,18 +122,14 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
       add_step(faces[f], renderer.color_layers(projection, still_at(time, camera), step), weight);
-      depths[f].add(renderer.ground_truth(projection, still_at(time, camera)).depth);
+      if (depth_guide)
+        depths[f].add(renderer.ground_truth(projection, still_at(time, camera)).depth);
     }
   });
   CubeFrame cube;
-  ColorLayers& c = cube.color;
   for (Face face : kFaces) {
-    const ColorLayers& layers = faces[int(face)];
-    put_face(c.direct, face, layers.direct), put_face(c.indirect, face, layers.indirect);
-    put_face(c.specular, face, layers.specular), put_face(c.other, face, layers.other);
-    put_face(c.albedo, face, layers.albedo), put_face(c.normal, face, layers.normal);
-    put_face(c.variance, face, layers.variance);
-    put_face(cube.truth.depth, face, depths[int(face)].mean());
+    put_face(cube.color, face, faces[int(face)]);
+    if (depth_guide) put_face(cube.truth.depth, face, depths[int(face)].mean());
   }
   cube.truth.instance = Image<std::uint16_t>(face_size, 6 * face_size, 1);
   return cube;

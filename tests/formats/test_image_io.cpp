@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "flowscape/formats/image_io.h"
+#include "flowscape/formats/srgb.h"
 
 using namespace flowscape;
 
@@ -31,4 +32,12 @@ TEST_CASE("JPEG compression leaves its artefacts, fewer at a higher quality, the
   CHECK(seen.pixel(8, 8)[0] > 180);
   CHECK(seen.pixel(8, 8)[2] < 20);
   CHECK_THROWS(jpeg_round_trip(red.view(), 0));
+}
+
+TEST_CASE("8-bit sRGB decodes to linear and encodes back to the same byte") {
+  for (int v = 0; v < 256; ++v) CHECK(linear_to_srgb8(srgb8_to_linear(std::uint8_t(v))) == v);
+  CHECK(srgb8_to_linear(0) == 0);
+  CHECK(srgb8_to_linear(255) == Approx(1));
+  CHECK(srgb8_to_linear(10) == Approx(10 / 255.0 / 12.92));  // the linear segment
+  CHECK(srgb8_to_linear(188) == Approx(std::pow((188 / 255.0 + 0.055) / 1.055, 2.4)));
 }

@@ -1,6 +1,5 @@
 #include "flowscape/release/final_pass.h"
 
-#include <cmath>
 #include <vector>
 
 #include "flowscape/core/random.h"
@@ -9,11 +8,6 @@
 
 namespace flowscape {
 namespace {
-
-float srgb8_to_linear(std::uint8_t value) {
-  const float c = value / 255.0f;
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
 
 // Colour in the clean pass's units (the sequence's exposure applied) to cd/m^2.
 double nits_per_value(const Sequence& sequence) {
@@ -68,7 +62,7 @@ Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& seque
   const RenderOptions options = sequence.color_options(config, frame);
   const CubeFrame cube = shutter_cube(
       renderer, config.face_size, frame_shutter(config, frame),
-      [&](double t) { return sequence.city.rig(t); }, options);
+      [&](double t) { return sequence.city.rig(t); }, options, config.denoise == "atrous");
   return denoised_cube_color(config, cube);
 }
 

@@ -35,9 +35,9 @@ ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, con
 // surface; +infinity where it never does): a denoising guide that does not cut the blur trails.
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, int steps);
-// The six cube faces over the shutter (render_cube's layout): their layers and, in truth, the
-// shutter-averaged depth and no instance ids (the guides denoise_cube takes).
+// The six cube faces over the shutter (render_cube's layout): their layers and, in truth, no
+// instance ids and, with `depth_guide` (the a-trous denoiser's), the shutter-averaged depth.
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
-                       const CameraTrack& camera, const RenderOptions& options);
+                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide);
 
 }  // namespace flowscape

@@ -1,0 +1,26 @@
+#pragma once
+// Internal: stacking the cube's faces (geometry.h's N x 6N layout), for render_cube and the
+// final pass's shutter_cube.
+#include <algorithm>
+
+#include "flowscape/renderer/renderer.h"
+#include "flowscape/stitcher/geometry.h"
+
+namespace flowscape {
+
+// Puts `image` at `face` of `cube`, allocating the stacked image on the first face.
+template <class T>
+void put_face(Image<T>& cube, Face face, const Image<T>& image) {
+  if (cube.data.empty()) cube = Image<T>(image.width, 6 * image.width, image.channels);
+  std::copy(image.data.begin(), image.data.end(), face_view(cube.view(), face).data);
+}
+
+// Every layer of a face's colour.
+inline void put_face(ColorLayers& cube, Face face, const ColorLayers& layers) {
+  put_face(cube.direct, face, layers.direct), put_face(cube.indirect, face, layers.indirect);
+  put_face(cube.specular, face, layers.specular), put_face(cube.other, face, layers.other);
+  put_face(cube.albedo, face, layers.albedo), put_face(cube.normal, face, layers.normal);
+  put_face(cube.variance, face, layers.variance);
+}
+
+}  // namespace flowscape
