@@ -65,7 +65,8 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
   const Projection camera = Projection::pinhole(o.height, o.height, 40);
   const GroundTruth gt = renderer.ground_truth(camera, frames);
-  const Image<float> color = release_color(o.color, sequence, renderer, camera, frames, frame, gt);
+  const Image<float> color =
+      release_color(o.color, sequence, renderer, camera, TruthRequest{frames}, frame, gt);
   return {linear_to_srgb8(color.view()), semantic_to_color(gt.semantic.view())};
 }
 
@@ -141,10 +142,12 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
   Renderer renderer(sequence.city.scene);
   std::vector<std::vector<Image<std::uint8_t>>> rows;
   for (const RigCamera& camera : rig.cameras) {
-    const TruthRequest request = at_camera(TruthRequest{sequence.frame_pair(frame)}, camera);
+    TruthRequest rig_request{sequence.frame_pair(frame)};
+    rig_request.track = [&sequence](double t) { return sequence.city.rig(t); };
+    const TruthRequest request = at_camera(rig_request, camera);
     const GroundTruth gt = renderer.ground_truth(camera.projection, request);
     const Image<float> color =
-        release_color(config, sequence, renderer, camera.projection, request.pair, frame, gt);
+        release_color(config, sequence, renderer, camera.projection, request, frame, gt);
     rows.push_back({linear_to_srgb8(color.view()),
                     flow_to_color(gt.flow.view(), gt.valid.view(), {}),
                     semantic_to_color(gt.semantic.view())});

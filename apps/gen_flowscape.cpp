@@ -140,6 +140,11 @@ int main(int argc, char** argv) {
   option("--chromatic-aberration", "chromatic_aberration", defaults.chromatic_aberration,
          "the final pass: lateral chromatic aberration of real lenses, red magnified and blue "
          "shrunk by this share of the radius (|k| <= 0.05)");
+  option("--lens-drops", "lens_drops", defaults.lens_drops,
+         "the final pass: water drops on real lenses (-1: in rain only, more in heavier rain; "
+         "0-200: this many; output kind lens_mask marks what they hide)");
+  option("--lens-dirt", "lens_dirt", defaults.lens_dirt,
+         "the final pass: dirt on real lenses, the densest blotch's share of the light (0-1)");
   option("--jpeg-quality", "jpeg_quality", defaults.jpeg_quality,
          "the final pass through JPEG compression at this quality (1-100; 0: none)");
   bool no_noise = false, no_vignetting = false, bayer = false;

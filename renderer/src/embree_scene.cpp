@@ -42,15 +42,23 @@ void copy_vertices(const Mesh& mesh, float* vertices) {
 }
 
 // How a BVH is built: once for the world, once for an actor's mesh that many actors share (worth
-// the slower, better build), or refitted per posed time (skinned).
-enum class Build { World, Shared, Refit };
+// the slower, better build), or per posed time (skinned): Posed rebuilds it at every pose (its
+// geometry's refit hint is ignored by Embree in a scene of the default medium quality; the ground
+// truth's bytes were made so), Refit refits it (a low-quality, two-level scene: the rolling
+// shutter's, posed once per line).
+enum class Build { World, Shared, Posed, Refit };
 
 // A BVH of one mesh.
 RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, Build build,
                    RTCGeometry* geometry_out = nullptr) {
   RTCScene bvh = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (build == Build::Refit) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+  if (build == Build::Posed || build == Build::Refit)
+    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
+  if (build == Build::Refit) {
+    rtcSetSceneFlags(bvh, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_LOW);
+  }
   if (build == Build::Shared) {
     rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_HIGH);
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
@@ -206,12 +214,13 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
       rtcRetainScene(bvh);
     bvhs_.push_back(bvh);
   }
-  now_ = posed_scene();
-  for (unsigned k = 0; k < skinned_.size(); ++k) meshes_[skinned_[k]].mesh = &now_.deformed[k].mesh;
+  now_ = posed_scene(int(Build::Posed));
+  use(now_);
 }
 
 EmbreeScene::~EmbreeScene() {
   release(now_);
+  if (lines_.top) release(lines_);
   for (PosedScene& target : targets_) release(target);
   for (RTCScene s : bvhs_)
     if (s) rtcReleaseScene(s);
@@ -224,7 +233,7 @@ void EmbreeScene::release(PosedScene& scene) {
 }
 
 // A top-level scene instancing every BVH (skinned parts: BVHs of its own, posed with it).
-EmbreeScene::PosedScene EmbreeScene::posed_scene() {
+EmbreeScene::PosedScene EmbreeScene::posed_scene(int skinned_build) {
   PosedScene posed;
   posed.top = rtcNewScene(device_);
   for (unsigned k = 0; k < skinned_.size(); ++k) {
@@ -232,8 +241,8 @@ EmbreeScene::PosedScene EmbreeScene::posed_scene() {
     const auto masked = std::find_if(masked_.begin(), masked_.end(),
                                      [&](const MaskedMesh& m) { return m.ref == &ref; });
     Deformed d{*ref.rest};
-    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, Build::Refit,
-                      &d.geometry);
+    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked,
+                      Build(skinned_build), &d.geometry);
     posed.deformed.push_back(std::move(d));
   }
   for (unsigned m = 0; m < meshes_.size(); ++m) {
@@ -275,30 +284,69 @@ bool EmbreeScene::pose(PosedScene& scene, double t) const {
     rtcCommitGeometry(instance);
   }
   rtcCommitScene(scene.top);
+  scene.inverses.resize(scene.poses.size());
+  for (std::size_t m = 0; m < scene.poses.size(); ++m) scene.inverses[m] = scene.poses[m].inverse();
   scene.time = t, scene.posed = true;
   return true;
 }
 
+void EmbreeScene::use(const PosedScene& scene) {
+  current_ = &scene;
+  for (unsigned k = 0; k < skinned_.size(); ++k)
+    meshes_[skinned_[k]].mesh = &scene.deformed[k].mesh;
+}
+
+void EmbreeScene::set_line_time(double t) {
+  if (!lines_.top) lines_ = posed_scene(int(Build::Refit));
+  pose(lines_, t);
+  use(lines_);
+}
+
 void EmbreeScene::set_times(double now, const std::vector<double>& targets) {
-  if (pose(now_, now)) {
-    inverse_now_.resize(now_.poses.size());
-    for (std::size_t m = 0; m < now_.poses.size(); ++m) inverse_now_[m] = now_.poses[m].inverse();
-  }
-  while (targets_.size() < targets.size()) targets_.push_back(posed_scene());
+  pose(now_, now);
+  use(now_);
+  while (targets_.size() < targets.size()) targets_.push_back(posed_scene(int(Build::Posed)));
   for (std::size_t k = 0; k < targets.size(); ++k) pose(targets_[k], targets[k]);
 }
 
 Vec3 EmbreeScene::point_at_target(int target, const Hit& hit, const Vec3& point) const {
   const int k = meshes_[hit.mesh].skinned;
   const Pose& then = pose_at_target(target, hit.mesh);
-  if (k < 0) return then * (inverse_now_[hit.mesh] * point);
+  if (k < 0) return then * (current_->inverses[hit.mesh] * point);
   return then * point_on(targets_[std::size_t(target)].deformed[std::size_t(k)].mesh, hit.triangle,
                          hit.u, hit.v);
 }
 
+SurfacePoint EmbreeScene::surface_point(const Hit& hit, const Vec3& point) const {
+  return {hit.mesh, hit.triangle, hit.u, hit.v, current_->inverses[hit.mesh] * point};
+}
+
+std::vector<Pose> EmbreeScene::bones_at(unsigned mesh, double t) const {
+  const MeshRef& ref = meshes_[mesh];
+  if (ref.skinned < 0) return {};
+  return scene_.actors[ref.actor].parts[ref.part].bones(t);
+}
+
+Vec3 EmbreeScene::world_point(const SurfacePoint& p, const Pose& mesh_pose,
+                              const std::vector<Pose>* bones) const {
+  const MeshRef& ref = meshes_[p.mesh];
+  if (ref.skinned < 0) return mesh_pose * p.object;
+  const Eigen::Vector3i& tri = ref.rest->triangles[p.triangle];
+  Vec3 local = Vec3::Zero();
+  const double weights[3] = {1.0 - p.u - p.v, p.u, p.v};
+  for (int c = 0; c < 3; ++c)
+    local += weights[c] * skinned_vertex(*ref.rest, std::size_t(tri[c]), *bones).cast<double>();
+  return mesh_pose * local;
+}
+
+Vec3 EmbreeScene::world_point(const SurfacePoint& p, double t) const {
+  const std::vector<Pose> bones = bones_at(p.mesh, t);
+  return world_point(p, pose_at(p.mesh, t), &bones);
+}
+
 Vec3 EmbreeScene::pattern_point(const Hit& hit, const Vec3& point) const {
   const MeshRef& ref = meshes_[hit.mesh];
-  if (ref.skinned < 0) return inverse_now_[hit.mesh] * point;
+  if (ref.skinned < 0) return current_->inverses[hit.mesh] * point;
   return point_on(*ref.rest, hit.triangle, hit.u, hit.v);
 }
 
@@ -308,7 +356,7 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
   RTCRayHit rh{};
   rh.ray = make_ray(origin, direction, kInfinity);
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(now_.top, &context, &rh);
+  rtcIntersect1(current_->top, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {true,
           rh.hit.instID[0],
@@ -326,7 +374,7 @@ bool EmbreeScene::occluded(int target, const Vec3& origin, const Vec3& direction
   RTCRay ray =
       make_ray(origin, direction,
                std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin)));
-  rtcOccluded1(target == kNow ? now_.top : targets_[std::size_t(target)].top, &context, &ray);
+  rtcOccluded1(target == kNow ? current_->top : targets_[std::size_t(target)].top, &context, &ray);
   return ray.tfar < 0;
 }
 
@@ -338,7 +386,7 @@ void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
   fill_packet(rays, count, kSceneMask | kColorOnlyMask, packet.ray, valid);
   std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
   std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
-  rtcIntersect16(valid, now_.top, &context, &packet);
+  rtcIntersect16(valid, current_->top, &context, &packet);
   const RTCHit16& hit = packet.hit;
   for (int i = 0; i < count; ++i)
     hits[i] = !valid[i] || hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
@@ -358,7 +406,7 @@ void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) cons
   alignas(64) RTCRay16 packet;
   alignas(64) int valid[kBundleSize];
   fill_packet(rays, count, kSceneMask | kSunMask, packet, valid);
-  rtcOccluded16(valid, now_.top, &context, &packet);
+  rtcOccluded16(valid, current_->top, &context, &packet);
   for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }
 

@@ -50,6 +50,14 @@ struct Hit {
   float u = 0, v = 0;  // barycentric: the point is (1 - u - v) v0 + u v1 + v v2
 };
 
+// A surface point held by what it lies on, so it can be found at any time: a rigid part's point
+// in the part's frame, a skinned part's triangle and barycentrics (`object` unused).
+struct SurfacePoint {
+  unsigned mesh = 0, triangle = 0;
+  float u = 0, v = 0;
+  Vec3 object = Vec3::Zero();
+};
+
 // Decides per hit whether a surface is there (alpha masks); the same for every ray kind, so the
 // ground truth and the colour see the same holes.
 class CoverageTest {
@@ -78,6 +86,9 @@ class EmbreeScene {
   // Poses the scene at `now` and one more top-level scene at each target time (a scene already
   // posed at its time is left as it is: the six faces of one frame).
   void set_times(double now, const std::vector<double>& targets);
+  // Poses a scene of its own at `t` and makes it `now` (no targets): a rolling shutter's lines,
+  // posed hundreds of times a frame, whose walkers' BVHs are refitted rather than rebuilt.
+  void set_line_time(double t);
   Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
   // Whether anything lies within `distance` along the ray (infinity: anywhere), at target time
   // `target` of set_times (kNow: at `now`).
@@ -92,17 +103,27 @@ class EmbreeScene {
   // the world: a rigid part's point moves with the part; a skinned one is the same barycentric
   // combination of its triangle's vertices posed then.
   Vec3 point_at_target(int target, const Hit& hit, const Vec3& point) const;
+  // The hit point (at `now`) as a SurfacePoint, and where that point is at time t: with the
+  // mesh's pose then and, for a skinned part, its bones then (world_point(p, t) evaluates both).
+  SurfacePoint surface_point(const Hit& hit, const Vec3& point) const;
+  Vec3 world_point(const SurfacePoint& p, const Pose& mesh_pose,
+                   const std::vector<Pose>* bones) const;
+  Vec3 world_point(const SurfacePoint& p, double t) const;
+  // A skinned mesh's bones at time t (empty for a rigid mesh).
+  std::vector<Pose> bones_at(unsigned mesh, double t) const;
+  Pose pose_at(unsigned mesh, double t) const;
   // The hit point in the frame procedural patterns use: the object frame of a rigid part, the rest
   // pose of a skinned one.
   Vec3 pattern_point(const Hit& hit, const Vec3& point) const;
 
   // Poses at the times of set_times (evaluated once per call there, not per ray).
-  const Pose& pose_now(unsigned mesh) const { return now_.poses[mesh]; }
-  const Pose& world_to_object_now(unsigned mesh) const { return inverse_now_[mesh]; }
+  const Pose& pose_now(unsigned mesh) const { return current_->poses[mesh]; }
+  const Pose& world_to_object_now(unsigned mesh) const { return current_->inverses[mesh]; }
   const Pose& pose_at_target(int target, unsigned mesh) const {
     return targets_[std::size_t(target)].poses[mesh];
   }
   const MeshRef& mesh(unsigned index) const { return meshes_[index]; }
+  unsigned mesh_count() const { return unsigned(meshes_.size()); }
   const Scene& scene() const { return scene_; }
 
  private:
@@ -115,13 +136,13 @@ class EmbreeScene {
   // A top-level scene instancing every BVH, posed at `time`.
   struct PosedScene {
     RTCScene top = nullptr;
-    std::vector<Pose> poses{};
+    std::vector<Pose> poses{}, inverses{};
     std::vector<Deformed> deformed{};  // one per skinned part
     double time = 0;
     bool posed = false;
   };
-  PosedScene posed_scene();
-  Pose pose_at(unsigned mesh, double t) const;
+  PosedScene posed_scene(int skinned_build);     // a Build of embree_scene.cpp
+  void use(const PosedScene& scene);             // `now` is `scene`'s
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
   void release(PosedScene& scene);
   RTCScene shared_bvh(const MeshRef& ref);
@@ -129,12 +150,12 @@ class EmbreeScene {
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
-  std::vector<RTCScene> bvhs_;      // per mesh: its shared BVH (null for skinned parts)
-  std::vector<unsigned> skinned_;   // the meshes that are skinned parts
-  std::vector<MaskedMesh> masked_;  // reserved up front: Embree keeps pointers into it
-  PosedScene now_;
-  std::vector<PosedScene> targets_;  // grown as requests need, never shrunk
-  std::vector<Pose> inverse_now_;
+  std::vector<RTCScene> bvhs_;         // per mesh: its shared BVH (null for skinned parts)
+  std::vector<unsigned> skinned_;      // the meshes that are skinned parts
+  std::vector<MaskedMesh> masked_;     // reserved up front: Embree keeps pointers into it
+  PosedScene now_, lines_;             // set_times' and set_line_time's (made when first asked)
+  const PosedScene* current_ = &now_;  // `now`: the one rays see
+  std::vector<PosedScene> targets_;    // grown as requests need, never shrunk
   const CoverageTest* coverage_;
 };
 

@@ -2,6 +2,7 @@
 // layers a denoiser needs (ColorLayers).
 #include "path_tracer.h"
 
+#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -381,72 +382,79 @@ void put(Image<float>& image, int x, int y, const Rgb& value) {
 
 }  // namespace
 
-ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
-                       const Projection& projection, const FramePair& frames,
-                       const RenderOptions& options, RenderStats* stats) {
-  embree.set_times(frames.time, {});
-  const int W = projection.width, H = projection.height;
-  ColorLayers out{Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
-                  Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
-                  Image<float>(W, H, 3)};
+ColorLayers color_layers_of(int width, int height) {
+  const int W = width, H = height;
+  return {Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
+          Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
+          Image<float>(W, H, 3)};
+}
+
+std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
+                         const Projection& projection, const Pose& camera,
+                         const RenderOptions& options, const PixelWindow& window,
+                         ColorLayers& out) {
   Image<float>* layers[kLayerCount] = {&out.other, &out.direct, &out.indirect, &out.specular};
-  const Vec3 origin = frames.rig.translation();
-  const Mat3 rotation = frames.rig.linear();
+  const Vec3 origin = camera.translation();
+  const Mat3 rotation = camera.linear();
   std::atomic<std::uint64_t> rays{0};
   const FrameContext frame{embree, images, lights, options.textures};
-  tbb::parallel_for(0, H, [&](int y) {
+  // 2-D blocks: a rolling shutter's window is a single line
+  const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
+  tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
     std::uint64_t row_rays = 0;
-    for (int x = 0; x < W; ++x) {
-      const std::uint64_t key =
-          mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
-      const Sampler::PixelKeys pixel_keys(key);
-      const PixelRays camera_rays(projection, x, y);
-      const double spread = projection.pixel_spread(Vec2(x + 0.5, y + 0.5));
-      PixelLooks camera_looks(frame, origin, (rotation * camera_rays({0.5, 0.5})).normalized(),
-                              spread);
-      Rgb sums[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
-      Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
-      Rgb albedo = Rgb::Zero();
-      Vec3 normal = Vec3::Zero();
-      for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
-        const int count = std::min(kBundleSize, options.samples_per_pixel - first);
-        Sampler samplers[kBundleSize];
-        PathState paths[kBundleSize];
-        for (int i = 0; i < count; ++i) {
-          samplers[i] = Sampler(pixel_keys, first + i, options.samples_per_pixel);
-          const Vec2 jitter = samplers[i].next();
-          paths[i].origin = origin;
-          paths[i].dir = (rotation * camera_rays(jitter)).normalized();
-          paths[i].spread = spread;
-          if (options.indirect_samples > 0 && options.indirect_samples < options.samples_per_pixel)
-            paths[i].indirect_weight =
-                first + i < options.indirect_samples
-                    ? double(options.samples_per_pixel) / options.indirect_samples
-                    : 0;
+    for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+      for (int x = block.cols().begin(); x < block.cols().end(); ++x) {
+        const std::uint64_t key =
+            mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
+        const Sampler::PixelKeys pixel_keys(key);
+        const PixelRays camera_rays(projection, x, y);
+        const double spread = projection.pixel_spread(Vec2(x + 0.5, y + 0.5));
+        PixelLooks camera_looks(frame, origin, (rotation * camera_rays({0.5, 0.5})).normalized(),
+                                spread);
+        Rgb sums[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
+        Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
+        Rgb albedo = Rgb::Zero();
+        Vec3 normal = Vec3::Zero();
+        for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
+          const int count = std::min(kBundleSize, options.samples_per_pixel - first);
+          Sampler samplers[kBundleSize];
+          PathState paths[kBundleSize];
+          for (int i = 0; i < count; ++i) {
+            samplers[i] = Sampler(pixel_keys, first + i, options.samples_per_pixel);
+            const Vec2 jitter = samplers[i].next();
+            paths[i].origin = origin;
+            paths[i].dir = (rotation * camera_rays(jitter)).normalized();
+            paths[i].spread = spread;
+            if (options.indirect_samples > 0 &&
+                options.indirect_samples < options.samples_per_pixel)
+              paths[i].indirect_weight =
+                  first + i < options.indirect_samples
+                      ? double(options.samples_per_pixel) / options.indirect_samples
+                      : 0;
+          }
+          trace_bundle(frame, camera_looks, paths, samplers, count, options.max_bounces, row_rays);
+          for (int i = 0; i < count; ++i) {
+            for (int l = 0; l < kLayerCount; ++l) sums[l] += paths[i].light[l];
+            for (int l = kDirect; l <= kSpecular; ++l)
+              squares[l - kDirect] += std::pow(luminance(paths[i].light[l]), 2);
+            albedo += paths[i].albedo, normal += paths[i].normal;
+          }
         }
-        trace_bundle(frame, camera_looks, paths, samplers, count, options.max_bounces, row_rays);
-        for (int i = 0; i < count; ++i) {
-          for (int l = 0; l < kLayerCount; ++l) sums[l] += paths[i].light[l];
-          for (int l = kDirect; l <= kSpecular; ++l)
-            squares[l - kDirect] += std::pow(luminance(paths[i].light[l]), 2);
-          albedo += paths[i].albedo, normal += paths[i].normal;
+        const double weight = 1.0 / std::max(1, options.samples_per_pixel);
+        for (int l = 0; l < kLayerCount; ++l) put(*layers[l], x, y, sums[l] * weight);
+        put(out.albedo, x, y, albedo * weight);
+        put(out.normal, x, y, normal);
+        Rgb variance;
+        for (int l = kDirect; l <= kSpecular; ++l) {
+          const double mean = luminance(sums[l]) * weight;
+          variance[l - kDirect] =
+              std::max(0.0, squares[l - kDirect] * weight - mean * mean) * weight;
         }
+        put(out.variance, x, y, variance);
       }
-      const double weight = 1.0 / std::max(1, options.samples_per_pixel);
-      for (int l = 0; l < kLayerCount; ++l) put(*layers[l], x, y, sums[l] * weight);
-      put(out.albedo, x, y, albedo * weight);
-      put(out.normal, x, y, normal);
-      Rgb variance;
-      for (int l = kDirect; l <= kSpecular; ++l) {
-        const double mean = luminance(sums[l]) * weight;
-        variance[l - kDirect] = std::max(0.0, squares[l - kDirect] * weight - mean * mean) * weight;
-      }
-      put(out.variance, x, y, variance);
-    }
     rays += row_rays;
   });
-  if (stats) stats->rays = rays;
-  return out;
+  return rays;
 }
 
 }  // namespace flowscape

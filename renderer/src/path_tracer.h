@@ -7,9 +7,13 @@
 
 namespace flowscape {
 
-// `lights` are the scene's at frames.time.
-ColorLayers path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
-                       const Projection& projection, const FramePair& frames,
-                       const RenderOptions& options, RenderStats* stats);
+// Zero layers of width x height.
+ColorLayers color_layers_of(int width, int height);
+// Traces the pixels of `window` into `out` (the whole image's layers) with the scene as `embree`
+// is posed and the camera at `camera` (camera -> world, as FramePair::rig); `lights` are the
+// scene's at the same time. Returns the rays traced.
+std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
+                         const Projection& projection, const Pose& camera,
+                         const RenderOptions& options, const PixelWindow& window, ColorLayers& out);
 
 }  // namespace flowscape

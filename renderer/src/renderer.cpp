@@ -1,17 +1,19 @@
 #include "flowscape/renderer/renderer.h"
 
+#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 #include "cube_faces.h"
 #include "embree_scene.h"
 #include "flowscape/stitcher/geometry.h"
 #include "image_textures.h"
 #include "path_tracer.h"
-#include "surface.h"
+#include "truth.h"
 
 namespace flowscape {
 
@@ -48,13 +50,48 @@ Image<float> Renderer::color(const Projection& projection, const FramePair& fram
 
 ColorLayers Renderer::color_layers(const Projection& projection, const FramePair& frames,
                                    const RenderOptions& options, RenderStats* stats) {
-  return path_trace(impl_->embree, impl_->images, impl_->lights_at(frames.time), projection, frames,
-                    options, stats);
+  return color_layers(
+      projection, frames.time, [&](double) { return frames.rig; }, {}, options, stats);
+}
+
+ColorLayers Renderer::color_layers(const Projection& projection, double time,
+                                   const CameraTrack& camera, const Readout& readout,
+                                   const RenderOptions& options, RenderStats* stats) {
+  ColorLayers out = color_layers_of(projection.width, projection.height);
+  std::uint64_t rays = 0;
+  for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
+    pose_line(impl_->embree, readout, t);
+    rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t), projection, camera(t),
+                       options, window, out);
+  });
+  if (stats) stats->rays = rays;
+  return out;
+}
+
+Image<float> Renderer::depth(const Projection& projection, double time, const CameraTrack& camera,
+                             const Readout& readout) {
+  Image<float> depth(projection.width, projection.height, 1);
+  for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
+    pose_line(impl_->embree, readout, t);
+    const Pose pose = camera(t);
+    const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
+    tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
+      for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+        for (int x = block.cols().begin(); x < block.cols().end(); ++x) {
+          const Vec3 ray = projection.ray(Vec2(x + 0.5, y + 0.5));
+          *depth.pixel(x, y) =
+              ray.isZero()
+                  ? std::numeric_limits<float>::quiet_NaN()
+                  : float(impl_->embree
+                              .intersect(pose.translation(), (pose.linear() * ray).normalized())
+                              .distance);
+        }
+    });
+  });
+  return depth;
 }
 
 namespace {
-
-constexpr float kNoVector = std::numeric_limits<float>::quiet_NaN();
 
 // What every pixel of one ground-truth call shares.
 struct TruthContext {
@@ -64,14 +101,7 @@ struct TruthContext {
   const TruthRequest& request;
   FlowMode mode;
   std::vector<Moment> targets;  // the pair's next moment, then request.more
-  Mat3 world_to_camera;         // the view's camera frame at the frame's time
-};
-
-// Where a pixel's surface point (or, for the sky, its direction) is seen at target `k`.
-struct TargetTruth {
-  float u = kUnknownFlow, v = kUnknownFlow;
-  std::uint8_t valid = 0;
-  Vec3 moved = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // the point then, world
+  CameraAt camera;              // at the frame's time
 };
 
 // Flow: the hit point, fixed on its object, moved to the object's pose at the target's time and
@@ -105,52 +135,7 @@ TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec
   return truth;
 }
 
-void put_vector(Image<float>& image, int x, int y, const Vec3& value) {
-  for (int i = 0; i < 3; ++i) image.pixel(x, y)[i] = float(value[i]);
-}
-
-void put_flow(Image<float>& flow, Image<std::uint8_t>& valid, int x, int y, const TargetTruth& t) {
-  flow.pixel(x, y)[0] = t.u, flow.pixel(x, y)[1] = t.v;
-  *valid.pixel(x, y) = t.valid;
-}
-
-// The normals of the first opaque surface, in the view's camera frame, facing the camera.
-void put_normals(const TruthContext& c, const Hit& hit, const Vec3& direction, Vec2 pixel,
-                 GroundTruth& out, int x, int y) {
-  if (!hit.found) {
-    for (Image<float>* image : {&out.normal, &out.shading_normal})
-      if (!image->data.empty()) std::fill_n(image->pixel(x, y), 3, kNoVector);
-    return;
-  }
-  const Vec3 origin = c.request.pair.rig.translation();
-  if (c.request.normal) {
-    Vec3 normal = (c.scene.pose_now(hit.mesh).linear() * hit.normal.cast<double>()).normalized();
-    if (normal.dot(direction) > 0) normal = -normal;
-    put_vector(out.normal, x, y, c.world_to_camera * normal);
-  }
-  if (c.request.shading_normal) {
-    const Vec3 point = origin + hit.distance * direction;
-    const double footprint = c.projection.pixel_spread(pixel) * hit.distance;
-    std::optional<TexturedLook> look;
-    if (is_textured(c.scene, hit))
-      look = textured_look(c.scene, c.images, hit, point, direction, footprint);
-    const Surface surface = surface_at(c.scene, hit, origin, direction, look ? &*look : nullptr);
-    put_vector(out.shading_normal, x, y, c.world_to_camera * surface.normal);
-  }
-}
-
 // Every asked-for kind of the ray through `pixel`, into column x, row y of `out`.
-// A pixel outside a lens's image: nothing, in every kind.
-void put_uncovered(GroundTruth& out, int x, int y) {
-  *out.depth.pixel(x, y) = std::numeric_limits<float>::quiet_NaN();
-  *out.semantic.pixel(x, y) = std::uint8_t(SemanticClass::Unlabeled);
-  *out.instance.pixel(x, y) = 0;
-  put_flow(out.flow, out.valid, x, y, {});
-  for (FlowTruth& more : out.more) put_flow(more.flow, more.valid, x, y, {});
-  for (Image<float>* image : {&out.scene_flow, &out.normal, &out.shading_normal})
-    if (!image->data.empty()) std::fill_n(image->pixel(x, y), 3, kNoVector);
-}
-
 void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int y) {
   const Pose& rig = c.request.pair.rig;
   const Vec3 origin = rig.translation();
@@ -158,10 +143,7 @@ void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int
   if (camera_ray.isZero()) return put_uncovered(out, x, y);
   const Vec3 direction = (rig.linear() * camera_ray).normalized();
   const Hit hit = c.scene.intersect(origin, direction);
-  *out.depth.pixel(x, y) = float(hit.distance);
-  *out.semantic.pixel(x, y) = std::uint8_t(
-      hit.found ? c.scene.mesh(hit.mesh).mesh->classes[hit.triangle] : SemanticClass::Sky);
-  *out.instance.pixel(x, y) = hit.found ? c.scene.mesh(hit.mesh).instance : 0;
+  put_surface(c.scene, hit, out, x, y);
   const Vec3 point = origin + hit.distance * direction;
   for (std::size_t k = 0; k < c.targets.size(); ++k) {
     const TargetTruth target = trace_target(c, int(k), hit, point, direction, pixel);
@@ -171,25 +153,13 @@ void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int
     }
     put_flow(out.flow, out.valid, x, y, target);
     if (c.request.scene_flow)
-      put_vector(
-          out.scene_flow, x, y,
-          hit.found ? Vec3(c.world_to_camera * (target.moved - point)) : Vec3::Constant(kNoVector));
+      put_vector(out.scene_flow, x, y,
+                 hit.found ? Vec3(c.camera.world_to_camera * (target.moved - point))
+                           : Vec3::Constant(kNoVector));
   }
   if (c.request.normal || c.request.shading_normal)
-    put_normals(c, hit, direction, pixel, out, x, y);
-}
-
-// Images of width x height for everything `request` asks for.
-GroundTruth allocate_truth(const TruthRequest& request, int width, int height) {
-  const int W = width, H = height;
-  GroundTruth gt{Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1), Image<std::uint16_t>(W, H, 1),
-                 Image<float>(W, H, 1), Image<std::uint8_t>(W, H, 1)};
-  for (std::size_t k = 0; k < request.more.size(); ++k)
-    gt.more.push_back({Image<float>(W, H, 2), Image<std::uint8_t>(W, H, 1)});
-  if (request.scene_flow) gt.scene_flow = Image<float>(W, H, 3);
-  if (request.normal) gt.normal = Image<float>(W, H, 3);
-  if (request.shading_normal) gt.shading_normal = Image<float>(W, H, 3);
-  return gt;
+    put_normals(c.scene, c.images, c.projection, c.request, c.camera, hit, direction, pixel, out, x,
+                y);
 }
 
 TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
@@ -201,7 +171,7 @@ TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
                  request,
                  mode,
                  {{request.pair.next_time, request.pair.next_rig}},
-                 (request.pair.rig.linear() * projection.camera_to_rig()).transpose()};
+                 camera_at(request.pair.rig, projection)};
   c.targets.insert(c.targets.end(), request.more.begin(), request.more.end());
   std::vector<double> times;
   for (const Moment& target : c.targets) times.push_back(target.time);
@@ -218,6 +188,8 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const FramePair
 
 GroundTruth Renderer::ground_truth(const Projection& projection, const TruthRequest& request,
                                    FlowMode mode) {
+  if (!request.readout.global())
+    return rolling_ground_truth(impl_->embree, impl_->images, projection, request);
   const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
   GroundTruth gt = allocate_truth(request, projection.width, projection.height);
   tbb::parallel_for(0, projection.height, [&](int y) {
@@ -228,6 +200,8 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const TruthRequ
 
 GroundTruth Renderer::ground_truth_at(const Projection& projection, const TruthRequest& request,
                                       const std::vector<Vec2>& pixels, FlowMode mode) {
+  if (!request.readout.global())
+    throw std::invalid_argument("ground truth at chosen pixels: global shutters only");
   const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
   GroundTruth gt = allocate_truth(request, int(pixels.size()), 1);
   tbb::parallel_for(std::size_t(0), pixels.size(),

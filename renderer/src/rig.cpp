@@ -37,6 +37,21 @@ nlohmann::json rows(const Mat3& m) {
   return {{m(0, 0), m(0, 1), m(0, 2)}, {m(1, 0), m(1, 1), m(1, 2)}, {m(2, 0), m(2, 1), m(2, 2)}};
 }
 
+// {"readout_ms": r in (0, 1000], "lines": "rows" (default) | "columns"}
+Readout readout_from_json(const nlohmann::json& j, const std::string& what) {
+  require(j.is_object(), what + "\"rolling_shutter\" must be an object");
+  for (const auto& [key, value] : j.items())
+    require(key == "readout_ms" || key == "lines",
+            what + "rolling_shutter: unknown key \"" + key + "\" (readout_ms, lines)");
+  const nlohmann::json ms = j.value("readout_ms", nlohmann::json());
+  require(ms.is_number() && ms.get<double>() > 0 && ms.get<double>() <= 1000,
+          what + "rolling_shutter \"readout_ms\" must be a number in (0, 1000]");
+  const nlohmann::json lines = j.value("lines", nlohmann::json("rows"));
+  require(lines == "rows" || lines == "columns",
+          what + "rolling_shutter \"lines\" must be \"rows\" or \"columns\"");
+  return {ms.get<double>() / 1000, lines == "columns"};
+}
+
 RigCamera camera_from_json(const nlohmann::json& c) {
   require(c.is_object(), "every camera must be an object");
   const std::string name = c.value("name", "");
@@ -72,6 +87,10 @@ RigCamera camera_from_json(const nlohmann::json& c) {
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
     throw std::invalid_argument(message.starts_with("rig: ") ? message : "rig: " + what + message);
+  }
+  if (c.contains("rolling_shutter")) {
+    require(model != "equirectangular", what + "an equirectangular camera has no rolling shutter");
+    camera.readout = readout_from_json(c.at("rolling_shutter"), what);
   }
   return camera;
 }
@@ -148,6 +167,9 @@ nlohmann::json to_json(const Rig& rig) {
                        {"parameters", erp ? nlohmann::json{{"height", c.projection.height}}
                                           : c.projection.lens->parameters()},
                        {"mount", mount}});
+    if (!c.readout.global())
+      cameras.back()["rolling_shutter"] = {{"readout_ms", c.readout.seconds * 1000},
+                                           {"lines", c.readout.columns ? "columns" : "rows"}};
   }
   return {{"name", rig.name}, {"cameras", cameras}};
 }
@@ -158,6 +180,9 @@ TruthRequest at_camera(const TruthRequest& request, const RigCamera& camera) {
   moved.pair.rig = request.pair.rig * offset;
   moved.pair.next_rig = request.pair.next_rig * offset;
   for (Moment& m : moved.more) m.rig = m.rig * offset;
+  if (request.track)
+    moved.track = [track = request.track, offset](double t) { return track(t) * offset; };
+  moved.readout = camera.readout;
   return moved;
 }
 

@@ -14,10 +14,6 @@ void accumulate(Image<float>& sum, const Image<float>& add, float weight) {
   for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += weight * add.data[i];
 }
 
-FramePair still_at(double time, const CameraTrack& camera) {
-  return {time, time, camera(time), camera(time)};
-}
-
 // sum += weight x step, the normals summed, the variances weight^2 x (of a mean of independent
 // means); an empty sum takes the step.
 void add_step(ColorLayers& sum, ColorLayers step, float weight) {
@@ -96,19 +92,20 @@ std::vector<double> shutter_times(const Shutter& shutter, int steps) {
 }
 
 ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, const RenderOptions& options) {
+                           const CameraTrack& camera, const RenderOptions& options,
+                           const Readout& readout) {
   ColorLayers sum;
   for_each_step(shutter, options, [&](double time, const RenderOptions& step, float weight) {
-    add_step(sum, renderer.color_layers(projection, still_at(time, camera), step), weight);
+    add_step(sum, renderer.color_layers(projection, time, camera, readout, step), weight);
   });
   return sum;
 }
 
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, int steps) {
+                           const CameraTrack& camera, int steps, const Readout& readout) {
   DepthSum depth;
   for (double time : shutter_times(shutter, steps))
-    depth.add(renderer.ground_truth(projection, still_at(time, camera)).depth);
+    depth.add(renderer.depth(projection, time, camera, readout));
   return depth.mean();
 }
 
@@ -121,9 +118,8 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
-      add_step(faces[f], renderer.color_layers(projection, still_at(time, camera), step), weight);
-      if (depth_guide)
-        depths[f].add(renderer.ground_truth(projection, still_at(time, camera)).depth);
+      add_step(faces[f], renderer.color_layers(projection, time, camera, {}, step), weight);
+      if (depth_guide) depths[f].add(renderer.depth(projection, time, camera));
     }
   });
   CubeFrame cube;

@@ -17,6 +17,11 @@ Eigen::Matrix<double, 3, 4> blended(const Mesh& rest, std::size_t v,
   return m;
 }
 
+// A rest vertex moved by a blended transform, rounded to float (the vertex rays hit).
+Eigen::Vector3f moved(const Eigen::Matrix<double, 3, 4>& m, const Eigen::Vector3f& vertex) {
+  return (m.leftCols<3>() * vertex.cast<double>() + m.col(3)).cast<float>();
+}
+
 }  // namespace
 
 void skin(const Mesh& rest, const std::vector<Pose>& bones, Mesh& posed) {
@@ -25,8 +30,7 @@ void skin(const Mesh& rest, const std::vector<Pose>& bones, Mesh& posed) {
     posed = rest;
   for (std::size_t v = 0; v < rest.vertices.size(); ++v) {
     const Eigen::Matrix<double, 3, 4> m = blended(rest, v, bones);
-    posed.vertices[v] =
-        (m.leftCols<3>() * rest.vertices[v].cast<double>() + m.col(3)).cast<float>();
+    posed.vertices[v] = moved(m, rest.vertices[v]);
     if (!rest.normals.empty())
       posed.normals[v] =
           (m.leftCols<3>() * rest.normals[v].cast<double>()).normalized().cast<float>();
@@ -35,6 +39,10 @@ void skin(const Mesh& rest, const std::vector<Pose>& bones, Mesh& posed) {
       posed.tangents[v] << t.cast<float>(), rest.tangents[v].w();
     }
   }
+}
+
+Eigen::Vector3f skinned_vertex(const Mesh& rest, std::size_t v, const std::vector<Pose>& bones) {
+  return moved(blended(rest, v, bones), rest.vertices[v]);
 }
 
 Mesh part_mesh_at(const Part& part, double t) {
@@ -54,11 +62,8 @@ std::vector<Vec3> part_vertices_at(const Part& part, double t) {
   }
   const std::vector<Pose> bones = part.bones(t);
   for (std::size_t v = 0; v < part.mesh->vertices.size(); ++v) {
-    const Eigen::Matrix<double, 3, 4> m = blended(*part.mesh, v, bones);
     // the float vertex the renderer traces, then posed: the same point
-    const Eigen::Vector3f skinned =
-        (m.leftCols<3>() * part.mesh->vertices[v].cast<double>() + m.col(3)).cast<float>();
-    out.push_back(pose * skinned.cast<double>());
+    out.push_back(pose * skinned_vertex(*part.mesh, v, bones).cast<double>());
   }
   return out;
 }

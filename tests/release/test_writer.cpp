@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
 #include "independent_math.h"
 #include "temp_dir.h"
@@ -164,6 +166,43 @@ TEST_CASE("a rig's cameras each write every kind in their own folder, and meta.j
   CHECK(std::isfinite(*depth.pixel(10, 8)));
 }
 
+TEST_CASE("a rolling-shutter camera writes its capture times and meta.json records its readout") {
+  TempDir dir;
+  const fs::path rig_file = dir.path / "rolling.json";
+  std::ofstream(rig_file) << R"({"name": "rolling", "cameras": [{"name": "front",
+    "model": "pinhole", "parameters": {"width": 24, "height": 16,
+    "K": [[12, 0, 11.5], [0, 12, 7.5], [0, 0, 1]]}, "mount": {"position": [0, 0, 0]},
+    "rolling_shutter": {"readout_ms": 32, "lines": "rows"}}]})";
+  ReleaseConfig config = tiny_release_config(1, 2);
+  config.rig = rig_file.string();
+  config.outputs = {"time"};
+  const fs::path out = dir.path / "release";
+  write(config, out);
+  const fs::path seq = sequence_dir(out, "map00_seq00");
+  for (int frame : {0, 1}) {
+    char name[32];
+    std::snprintf(name, sizeof name, "cameras/front/time/%06d.exr", frame);
+    const Image<float> time = read_image<float>(seq / name);
+    for (int y = 0; y < 16; ++y)  // the frame's time plus 32 ms x ((y + 1/2) / 16 - 1/2)
+      CHECK(*time.pixel(5, y) ==
+            Approx(Sequence::time(frame) + 0.032 * ((y + 0.5) / 16 - 0.5)).epsilon(1e-6));
+  }
+  const nlohmann::json meta = read_json(seq / "meta.json");
+  CHECK(meta["views"]["cameras/front"]["rolling_shutter"]["readout_s"] == 0.032);
+  CHECK(meta["rig"]["cameras"][0]["rolling_shutter"]["readout_ms"] == 32.0);
+  // the flow is found for most pixels, and a valid pixel's flow is always known
+  const Flow flow = read_flo(seq / "cameras/front/flow/000000.flo");
+  const Image<std::uint8_t> valid =
+      read_image<std::uint8_t>(seq / "cameras/front/valid/000000.png");
+  int found = 0;
+  for (int i = 0; i < 24 * 16; ++i)
+    if (valid.data[std::size_t(i)]) {
+      ++found;
+      CHECK(std::abs(flow.uv.data[std::size_t(2 * i)]) < 100);
+    }
+  CHECK(found > 24 * 16 / 2);
+}
+
 // Opt-in asset packs: each actor showing a pack's model names it and its licence in meta.json, and
 // the card's licence lists them. Runs where Debian's torcs-data is installed (333 MB, not in CI).
 TEST_CASE("an asset pack's models carry their licence into meta.json and the card") {
@@ -241,4 +280,33 @@ TEST_CASE("the final pass leaves the clean colour and the ground truth as they w
   write(config, final_dir.path);
   CHECK(file_bytes(final_erp) == final_bytes);
   CHECK(read_meta(with_final).final.at("exposures") == exposures);
+}
+
+TEST_CASE("drops on a real lens: final shows them, lens_mask marks them, the ground truth holds") {
+  TempDir dry_dir, wet_dir;
+  ReleaseConfig config = tiny_release_config(1, 2);
+  config.rig = "fisheye", config.spp = 2, config.height = 48;
+  config.outputs = {"final", "lens_mask"};
+  config.lens_drops = 0;
+  write(config, dry_dir.path);
+  config.lens_drops = 30, config.lens_dirt = 0.7;
+  write(config, wet_dir.path);
+  const fs::path dry = sequence_dir(dry_dir.path, "map00_seq00"),
+                 wet = sequence_dir(wet_dir.path, "map00_seq00");
+  const auto file = [](const char* kind, int frame) {
+    return frame_file(output_kind(kind), View::of_camera("front"), frame);
+  };
+  for (const char* kind : {"color", "flow", "depth", "semantic", "instance", "valid"})
+    CHECK(file_bytes(wet / file(kind, 0)) == file_bytes(dry / file(kind, 0)));
+  CHECK(file_bytes(wet / file("final", 0)) != file_bytes(dry / file("final", 0)));
+  const Image<std::uint8_t> dry_mask = read_image<std::uint8_t>(dry / file("lens_mask", 0));
+  const Image<std::uint8_t> mask = read_image<std::uint8_t>(wet / file("lens_mask", 0));
+  CHECK(std::count(dry_mask.data.begin(), dry_mask.data.end(), 1) == 0);
+  CHECK(std::count(mask.data.begin(), mask.data.end(), 1) > 0);
+  const Image<float> depth = read_image<float>(wet / file("depth", 0));
+  for (std::size_t i = 0; i < mask.data.size(); ++i)  // nothing to hide outside the image circle
+    if (std::isnan(depth.data[i])) CHECK(mask.data[i] == 0);
+  // the cover stays on the lens for the whole sequence
+  CHECK(file_bytes(wet / file("lens_mask", 1)) == file_bytes(wet / file("lens_mask", 0)));
+  CHECK(read_meta(wet).final.at("lens_drops") == 30);
 }

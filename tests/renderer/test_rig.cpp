@@ -44,6 +44,14 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
   CHECK(rig.cameras[1].projection.width == 32);
   const Rig again = rig_from_json(to_json(rig));  // camera_to_rig rows instead of the angles
   CHECK(to_json(again) == to_json(rig));
+  CHECK(rig.cameras[0].readout.global());
+  CHECK_FALSE(to_json(rig)["cameras"][0].contains("rolling_shutter"));
+  nlohmann::json rolling = file;
+  rolling["cameras"][0]["rolling_shutter"] = {{"readout_ms", 25}, {"lines", "columns"}};
+  const Rig read = rig_from_json(rolling);
+  CHECK(read.cameras[0].readout.seconds == Approx(0.025));
+  CHECK(read.cameras[0].readout.columns);
+  CHECK(rig_from_json(to_json(read)).cameras[0].readout.seconds == read.cameras[0].readout.seconds);
   CHECK(again.cameras[0].mount().matrix().isApprox(rig.cameras[0].mount().matrix()));
 
   const auto refused = [&](const std::function<void(nlohmann::json&)>& change,
@@ -70,6 +78,26 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
         j["cameras"][1]["mount"]["yaw_pitch_roll_degrees"] = {1, 0, 0};
       },
       "an equirectangular camera keeps the rig's axes");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][1]["rolling_shutter"] = {{"readout_ms", 20}};
+      },
+      "an equirectangular camera has no rolling shutter");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["rolling_shutter"] = {{"readout_ms", 0}};
+      },
+      "\"readout_ms\" must be a number in (0, 1000]");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["rolling_shutter"] = {{"readout_ms", 20}, {"lines", "diagonal"}};
+      },
+      "\"lines\" must be \"rows\" or \"columns\"");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["rolling_shutter"] = {{"readout", 20}};
+      },
+      "rolling_shutter: unknown key \"readout\"");
   refused([](nlohmann::json& j) { j["cameras"] = nlohmann::json::array(); },
           "\"cameras\" must list 1 to 16 cameras");
   CHECK_THROWS_WITH(rig_preset("gopro", 64), Catch::Contains("unknown rig \"gopro\""));
@@ -102,4 +130,13 @@ TEST_CASE("a camera off the rig's origin moves with the rig's rotation (its leve
   CHECK(moved.pair.next_rig.translation().isApprox(Vec3(10, 2, 0)));  // turned left: now at +y
   CHECK(moved.more[0].rig.translation().isApprox(Vec3(-2, 0, 0)));
   CHECK(moved.pair.next_rig.linear().isApprox(request.pair.next_rig.linear()));
+  CHECK_FALSE(moved.track);
+  // a track moves the same way, and the camera's readout comes with it
+  RigCamera rolling = camera;
+  rolling.readout = {0.02, true};
+  request.track = [](double t) { return Pose(Eigen::AngleAxisd(kPi / 2 * t, Vec3::UnitZ())); };
+  const TruthRequest on_track = at_camera(request, rolling);
+  CHECK(on_track.track(1).translation().isApprox(Vec3(0, 2, 0)));
+  CHECK(on_track.readout.seconds == 0.02);
+  CHECK(on_track.readout.columns);
 }

@@ -41,6 +41,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
   visit("vignetting", c.vignetting), visit("chromatic_aberration", c.chromatic_aberration);
   visit("bayer", c.bayer), visit("jpeg_quality", c.jpeg_quality);
+  visit("lens_drops", c.lens_drops), visit("lens_dirt", c.lens_dirt);
 }
 
 template <class T>
@@ -85,6 +86,9 @@ void validate(const ReleaseConfig& c) {
   require(c.lens_glare >= 0 && c.lens_glare <= 0.5, "lens_glare must be in 0..0.5");
   require(std::abs(c.chromatic_aberration) <= 0.05, "chromatic_aberration must be in -0.05..0.05");
   require(c.jpeg_quality >= 0 && c.jpeg_quality <= 100, "jpeg_quality must be in 0..100");
+  require(c.lens_drops >= -1 && c.lens_drops <= 200,
+          "lens_drops must be in -1..200 (-1: in rain only)");
+  require(c.lens_dirt >= 0 && c.lens_dirt <= 1, "lens_dirt must be in 0..1");
   for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");

@@ -45,13 +45,14 @@ Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
 }
 
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
-                         const Projection& camera, const CameraTrack& track, int frame) {
+                         const Projection& camera, const CameraTrack& track, int frame,
+                         const Readout& readout) {
   const RenderOptions options = sequence.color_options(config, frame);
   const Shutter shutter = frame_shutter(config, frame);
-  const ColorLayers layers = shutter_layers(renderer, camera, shutter, track, options);
+  const ColorLayers layers = shutter_layers(renderer, camera, shutter, track, options, readout);
   const Image<float> depth =
       config.denoise == "atrous"
-          ? shutter_depth(renderer, camera, shutter, track, shutter_steps(options))
+          ? shutter_depth(renderer, camera, shutter, track, shutter_steps(options), readout)
           : Image<float>{};
   const Image<std::uint16_t> no_ids(camera.width, camera.height, 1);
   return denoised_color(config, layers, camera, depth.view(), no_ids.view());
@@ -66,6 +67,32 @@ Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& seque
   return denoised_cube_color(config, cube);
 }
 
+namespace {
+
+int lens_drops(const ReleaseConfig& config, const Sequence& sequence) {
+  if (config.lens_drops >= 0) return config.lens_drops;
+  const double rain = sequence.weather.precipitation;
+  return rain > 0 ? std::max(1, int(std::lround(24 * rain))) : 0;
+}
+
+}  // namespace
+
+LensCover release_lens_cover(const ReleaseConfig& config, const Sequence& sequence,
+                             const Projection& camera, int view) {
+  return lens_cover(camera.width, camera.height, lens_drops(config, sequence), config.lens_dirt,
+                    derived_seed(sequence.spec.seed, std::uint64_t(view), 11));
+}
+
+Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequence& sequence,
+                                      const Projection& camera, int view) {
+  Image<std::uint8_t> mask =
+      cover_mask(release_lens_cover(config, sequence, camera, view), camera.width, camera.height);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      if (!camera.covers(Vec2(x + 0.5, y + 0.5))) *mask.pixel(x, y) = 0;
+  return mask;
+}
+
 Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequence,
                             ImageView<const float> color, const Projection& camera, bool lens,
                             const Exposure& exposure, int frame, int view) {
@@ -74,6 +101,10 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
   Image<float> nits(color.width, color.height, 3);
   const double scale = nits_per_value(sequence);
   for (std::size_t i = 0; i < nits.data.size(); ++i) nits.data[i] = float(color.data[i] * scale);
+  if (lens) {
+    const LensCover cover = release_lens_cover(config, sequence, camera, view);
+    if (!cover.empty()) nits = through_cover(nits.view(), cover);
+  }
   const Shutter shutter = frame_shutter(config, frame);
   const Image<float> raw =
       sensor_raw(lens_image(nits.view(), camera, sensor).view(), sensor, exposure,
@@ -83,7 +114,8 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
   return config.jpeg_quality > 0 ? jpeg_round_trip(display.view(), config.jpeg_quality) : display;
 }
 
-nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposure>& exposures) {
+nlohmann::json final_json(const ReleaseConfig& config, const Sequence& sequence,
+                          const std::vector<Exposure>& exposures) {
   const SensorModel s = release_sensor(config);
   nlohmann::json per_frame = nlohmann::json::array();
   for (const Exposure& e : exposures)
@@ -107,6 +139,8 @@ nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposur
             {"chromatic_aberration", s.chromatic_aberration},
             {"bayer", s.bayer}}},
           {"jpeg_quality", config.jpeg_quality},
+          {"lens_drops", lens_drops(config, sequence)},  // on each real lens
+          {"lens_dirt", config.lens_dirt},
           {"exposures", per_frame}};
 }
 

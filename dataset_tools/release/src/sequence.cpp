@@ -62,6 +62,7 @@ TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int 
   plan.request.normal = layout.has("normal");
   plan.request.shading_normal = layout.has("normal_shading");
   plan.request.camera_on_rig = true;
+  plan.request.track = [&sequence](double t) { return sequence.city.rig(t); };
   return plan;
 }
 
@@ -105,15 +106,18 @@ Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& laye
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth) {
-  return release_color(config, sequence, renderer, camera, sequence.frame_pair(frame), frame,
-                       truth);
+  return release_color(config, sequence, renderer, camera, TruthRequest{sequence.frame_pair(frame)},
+                       frame, truth);
 }
 
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
-                           Renderer& renderer, const Projection& camera, const FramePair& pair,
+                           Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
+  const RenderOptions options = sequence.color_options(config, frame);
   const ColorLayers layers =
-      renderer.color_layers(camera, pair, sequence.color_options(config, frame));
+      view.readout.global()
+          ? renderer.color_layers(camera, view.pair, options)
+          : renderer.color_layers(camera, view.pair.time, view.track, view.readout, options);
   return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
 }
 
@@ -176,6 +180,11 @@ nlohmann::json rig_views_json(const Rig& rig) {
         {"height", p.height},
         {"camera_to_rig", matrix_rows(p.camera_to_rig())},
         {"translation_in_rig", {camera.position.x(), camera.position.y(), camera.position.z()}}};
+    if (!camera.readout.global())  // poses are the frame time's (the middle line's)
+      views[view_dir(View::of_camera(camera.name)).generic_string()]["rolling_shutter"] = {
+          {"readout_s", camera.readout.seconds},
+          {"lines", camera.readout.columns ? "columns" : "rows"},
+          {"line_time", "frame time + readout_s x (line + 0.5 - lines / 2) / lines"}};
   }
   return views;
 }

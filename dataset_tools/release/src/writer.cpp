@@ -32,12 +32,21 @@ using ViewImages = std::map<std::string, AnyImage>;
 // The images of one view of a frame, by release kind (layout.h), each in its file's pixel type;
 // truth.more[k] is the flow of step more_steps[k]. A new output kind adds its image here.
 // A view's images, its semantic ids in the release's class table.
+// The kinds beside the clean colour and the ground truth (empty where the layout has none).
+struct CameraImages {
+  Image<std::uint8_t> final{};
+  Image<float> time{};
+  Image<std::uint8_t> lens_mask{};
+};
+
 ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
                        const std::vector<int>& more_steps, const ClassTable& classes,
-                       Image<std::uint8_t> final = {}) {
+                       CameraImages camera = {}) {
   ViewImages images;
   images.emplace("color", std::move(color));
-  images.emplace("final", std::move(final));
+  images.emplace("final", std::move(camera.final));
+  images.emplace("time", std::move(camera.time));
+  images.emplace("lens_mask", std::move(camera.lens_mask));
   images.emplace("flow", std::move(truth.flow));
   to_table_ids(classes, truth.semantic.view());
   images.emplace("semantic", std::move(truth.semantic));
@@ -133,6 +142,16 @@ FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequ
   return out;
 }
 
+// A virtual camera's (the ERP's, the stacked faces'): no readout, no lens to cover.
+CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection& camera,
+                                   const TruthPlan& plan, Image<std::uint8_t> final) {
+  CameraImages images{std::move(final)};
+  if (layout.has("time")) images.time = capture_times(camera, {}, plan.request.pair.time);
+  if (layout.has("lens_mask"))
+    images.lens_mask = Image<std::uint8_t>(camera.width, camera.height, 1);
+  return images;
+}
+
 // The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
 // there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
 // directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
@@ -168,12 +187,16 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
       final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
     }
   }
-  if (map)
+  if (map) {
+    const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
     write_cube(dir, layout, frame, config.frames,
                view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps,
-                           class_table(config.classes), std::move(final.faces)));
-  const ViewImages images = view_images(std::move(truth), std::move(erp_clean), plan.steps,
-                                        class_table(config.classes), std::move(final.erp));
+                           class_table(config.classes),
+                           virtual_camera_images(layout, faces, plan, std::move(final.faces))));
+  }
+  const ViewImages images =
+      view_images(std::move(truth), std::move(erp_clean), plan.steps, class_table(config.classes),
+                  virtual_camera_images(layout, erp, plan, std::move(final.erp)));
   write_single_view(dir, layout, View(), frame, config.frames, images);
   return statistics_of(images, frame, config.frames);
 }
@@ -185,26 +208,29 @@ FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout
                                 const fs::path& dir, int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   FrameStatistics first;
-  int view = 0;
   for (const RigCamera& camera : rig.cameras) {
+    const int view = int(&camera - rig.cameras.data());
     const TruthRequest request = at_camera(plan.request, camera);
     GroundTruth truth = renderer.ground_truth(camera.projection, request);
     const Image<float> color =
-        release_color(config, sequence, renderer, camera.projection, request.pair, frame, truth);
+        release_color(config, sequence, renderer, camera.projection, request, frame, truth);
     Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
     if (exposure) {
       if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
         *exposure =
             exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
-      const Eigen::Translation3d mount(camera.position);
-      const Image<float> linear = final_color(
-          config, sequence, renderer, camera.projection,
-          [&](double t) { return sequence.city.rig(t) * mount; }, frame);
-      final = develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame,
-                      view++);
+      const Image<float> linear = final_color(config, sequence, renderer, camera.projection,
+                                              request.track, frame, camera.readout);
+      final =
+          develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame, view);
     }
+    CameraImages extras{std::move(final)};
+    if (layout.has("time"))
+      extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
+    if (layout.has("lens_mask"))
+      extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
     const ViewImages images = view_images(std::move(truth), std::move(clean), plan.steps,
-                                          class_table(config.classes), std::move(final));
+                                          class_table(config.classes), std::move(extras));
     write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
     if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
   }
@@ -274,9 +300,10 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
     if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
     const nlohmann::json now = to_json(ReleaseConfig{});
-    for (const char* key : {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare",
-                            "vignetting", "chromatic_aberration", "bayer",
-                            "jpeg_quality"})  // the defaults hold what releases without them did
+    for (const char* key :
+         {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
+          "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops",
+          "lens_dirt"})  // the defaults hold what releases without them did
       if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;
@@ -342,7 +369,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   meta.boxes = boxes_json(dir, layout, config.frames);
   meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps,
                                              class_table(config.classes).size());
-  if (final) meta.final = final_json(config, exposures);
+  if (final) meta.final = final_json(config, sequence, exposures);
   write_meta(dir, meta);
 }
 

@@ -2,11 +2,13 @@
 // Embree ray casting of a Scene: exact ground truth for the pixel-centre ray of every pixel.
 // Each mesh gets its own BVH, built once; every frame only re-poses the instances.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "flowscape/core/image.h"
 #include "flowscape/renderer/projection.h"
+#include "flowscape/renderer/rolling_shutter.h"
 #include "flowscape/scenes/scene.h"
 
 namespace flowscape {
@@ -23,6 +25,9 @@ struct Moment {
   Pose rig = Pose::Identity();  // rig -> world
 };
 
+// Where a camera (or the rig) is at any time: camera -> world, as FramePair::rig.
+using CameraTrack = std::function<Pose(double time)>;
+
 // The ground truth a frame needs: flow and validity to the pair's next moment and to each of
 // `more` (other frame gaps, earlier frames: flow goes from pair.time to the target), and, when
 // asked, the 3-D motion of each pixel's surface point to the pair's next moment and its normals.
@@ -33,6 +38,14 @@ struct TruthRequest {
   // The camera is one of the rig's (pair.rig is where the rig is, not another viewpoint): parts
   // fixed to the rig (Part::on_rig, the ego's body) then have exactly zero flow.
   bool camera_on_rig = false;
+  // A rolling shutter (not readout.global()): each line of this frame's image and of every
+  // target's is captured at its own time (rolling_shutter.h) with the camera where `track` puts it
+  // then (the pair's and the moments' rigs are not used; their times are the frame times). A
+  // pixel's flow goes to where its surface point is seen in the target's rolling-shutter image,
+  // the earliest line where two see it, unknown where none does; every kind follows the line
+  // times (docs/cameras.md, "Rolling shutter").
+  Readout readout{};
+  CameraTrack track{};
 };
 
 struct FlowTruth {
@@ -102,8 +115,13 @@ class Renderer {
                            FlowMode mode = FlowMode::Wrap360);
   // The same for the rays through the given continuous pixel positions (not only pixel centres),
   // as images of pixels.size() x 1: column k is pixels[k]'s.
+  // (Global shutter only: throws std::invalid_argument for a rolling one.)
   GroundTruth ground_truth_at(const Projection& projection, const TruthRequest& request,
                               const std::vector<Vec2>& pixels, FlowMode mode = FlowMode::Wrap360);
+  // The distance along each pixel centre's ray (+infinity for the sky, NaN outside a lens's image)
+  // with the camera on `camera` at `time`, each line at its own time with a rolling shutter.
+  Image<float> depth(const Projection& projection, double time, const CameraTrack& camera,
+                     const Readout& readout = {});
 
   // Linear HDR radiance (RGB) at frames.time, path traced: Lambertian, clear-coat, metal, glass
   // and emissive surfaces, sun (sampled directly) and sky, fog integrated in closed form, Russian
@@ -113,6 +131,12 @@ class Renderer {
   // The same estimate in layers (raw_color(color_layers(...)) == color(...)).
   ColorLayers color_layers(const Projection& projection, const FramePair& frames,
                            const RenderOptions& options = {}, RenderStats* stats = nullptr);
+  // The same with the camera on `camera` at `time`; with a rolling shutter each line is traced
+  // with the scene, its lights and the camera posed at the line's time (the pixels' samples and
+  // seeds as for a global shutter).
+  ColorLayers color_layers(const Projection& projection, double time, const CameraTrack& camera,
+                           const Readout& readout, const RenderOptions& options = {},
+                           RenderStats* stats = nullptr);
 
  private:
   struct Impl;

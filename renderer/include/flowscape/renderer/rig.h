@@ -15,6 +15,7 @@ struct RigCamera {
   std::string name;              // its folder: cameras/<name>
   Projection projection;         // the model and its image; rotation: camera -> rig
   Vec3 position = Vec3::Zero();  // of the optical centre in the rig frame, metres
+  Readout readout{};             // a rolling shutter's (global by default)
   Pose mount() const;            // camera -> rig
 };
 
@@ -32,9 +33,10 @@ std::vector<std::string> rig_presets();
 Rig rig_preset(const std::string& name, int size);
 
 // A rig file: {"name": ..., "cameras": [{"name", "model", "parameters", "mount": {"position":
-// [x, y, z], "camera_to_rig": 3x3 rows | "yaw_pitch_roll_degrees": [y, p, r]}}]}; model
-// "equirectangular" takes parameters {"height"} and a mount without rotation. Throws
-// std::invalid_argument naming what is wrong (docs/cameras.md).
+// [x, y, z], "camera_to_rig": 3x3 rows | "yaw_pitch_roll_degrees": [y, p, r]},
+// "rolling_shutter": {"readout_ms": r, "lines": "rows" | "columns"}}]} (no rolling_shutter: a
+// global shutter); model "equirectangular" takes parameters {"height"}, a mount without rotation
+// and no rolling shutter. Throws std::invalid_argument naming what is wrong (docs/cameras.md).
 Rig rig_from_json(const nlohmann::json& json);
 // What meta.json records and rig_from_json reads back.
 nlohmann::json to_json(const Rig& rig);
@@ -43,8 +45,9 @@ nlohmann::json to_json(const Rig& rig);
 // forward axis, right-handed), starting from looking forward (the front face's frame).
 Mat3 look(double yaw_degrees, double pitch_degrees, double roll_degrees);
 
-// The request as the camera sees it: every moment's rig moved to the camera's optical centre (its
-// position turned with the rig, so a rotation's lever arm moves it too).
+// The request as the camera sees it: every moment's rig (and the track) moved to the camera's
+// optical centre (its position turned with the rig, so a rotation's lever arm moves it too), and
+// the camera's readout.
 TruthRequest at_camera(const TruthRequest& request, const RigCamera& camera);
 
 }  // namespace flowscape

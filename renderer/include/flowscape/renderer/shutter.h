@@ -23,18 +23,18 @@ int shutter_steps(const RenderOptions& options);
 // The middle of each step: open + (k + 0.5) / steps x (close - open).
 std::vector<double> shutter_times(const Shutter& shutter, int steps);
 
-// Where the camera is (camera -> world, as FramePair::rig) at any time.
-using CameraTrack = std::function<Pose(double time)>;
-
 // The colour layers over the shutter: each step traced with samples_per_pixel / steps samples (its
 // own seed) with the scene and `camera` posed at its time, then averaged (the normals summed), so
-// the albedo and normals the denoiser is guided by follow the blur.
+// the albedo and normals the denoiser is guided by follow the blur. With a rolling shutter each
+// line's shutter is centred on the line's time: a step at `time` traces line l at time + its
+// offset.
 ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, const RenderOptions& options);
+                           const CameraTrack& camera, const RenderOptions& options,
+                           const Readout& readout = {});
 // The depth of each pixel's centre ray averaged over the same times (over the times it meets a
 // surface; +infinity where it never does): a denoising guide that does not cut the blur trails.
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, int steps);
+                           const CameraTrack& camera, int steps, const Readout& readout = {});
 // The six cube faces over the shutter (render_cube's layout): their layers and, in truth, no
 // instance ids and, with `depth_guide` (the a-trous denoiser's), the shutter-averaged depth.
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,

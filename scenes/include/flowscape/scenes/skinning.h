@@ -13,6 +13,8 @@ namespace flowscape {
 // `posed` gets `rest`'s vertices, normals and tangents moved by `bones` (its other attributes are
 // copied from rest when its sizes differ, else left as they are).
 void skin(const Mesh& rest, const std::vector<Pose>& bones, Mesh& posed);
+// Vertex v of `rest` moved by `bones`, rounded to float as skin() stores it (what rays hit).
+Eigen::Vector3f skinned_vertex(const Mesh& rest, std::size_t v, const std::vector<Pose>& bones);
 // A part's mesh in the part's frame at time t: the mesh itself (rigid) or skinned then.
 Mesh part_mesh_at(const Part& part, double t);
 // A part's vertices in the actor's frame at time t (part pose and skinning applied).

@@ -85,6 +85,11 @@ struct ReleaseConfig {
   double chromatic_aberration = 0;
   bool bayer = false;
   int jpeg_quality = 0;
+  // What lies on real lenses in the final pass (renderer/lens_cover.h): water drops (-1: in rain
+  // only, round(24 x precipitation), at least 1; else this many, 0..200) and dirt (the densest
+  // blotch's share of the light, 0..1; 0: clean).
+  int lens_drops = -1;
+  double lens_dirt = 0;
   std::vector<int> flow_gaps{1};
   // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
   // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),

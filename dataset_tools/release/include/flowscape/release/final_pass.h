@@ -9,6 +9,7 @@
 
 #include "flowscape/release/config.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/renderer/lens_cover.h"
 #include "flowscape/renderer/sensor.h"
 #include "flowscape/renderer/shutter.h"
 
@@ -26,9 +27,19 @@ Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
                         const Exposure& previous, ImageView<const std::uint8_t> clean,
                         const Projection& camera, int frame);
 
-// One view's colour over the frame's shutter, denoised (linear, the clean pass's units).
+// The drops and dirt on a real lens of a sequence's view (config lens_drops, lens_dirt; the
+// same for every frame).
+LensCover release_lens_cover(const ReleaseConfig& config, const Sequence& sequence,
+                             const Projection& camera, int view);
+// Its lens_mask: cover_mask where the lens has an image, 0 elsewhere.
+Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequence& sequence,
+                                      const Projection& camera, int view);
+
+// One view's colour over the frame's shutter, denoised (linear, the clean pass's units); with a
+// rolling shutter each line's shutter is centred on its own time.
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
-                         const Projection& camera, const CameraTrack& track, int frame);
+                         const Projection& camera, const CameraTrack& track, int frame,
+                         const Readout& readout = {});
 // The six cube faces' (stacked), for the flowscape rig.
 Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
                               Renderer& renderer, int frame);
@@ -40,6 +51,7 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
                             const Exposure& exposure, int frame, int view);
 
 // meta.json's "final": the shutter, the sensor and each frame's exposure.
-nlohmann::json final_json(const ReleaseConfig& config, const std::vector<Exposure>& exposures);
+nlohmann::json final_json(const ReleaseConfig& config, const Sequence& sequence,
+                          const std::vector<Exposure>& exposures);
 
 }  // namespace flowscape

@@ -47,7 +47,7 @@ struct OutputKind {
 };
 
 // Every kind a release can hold (docs/release.md, "Output kinds", has each one's definition).
-inline constexpr std::array<OutputKind, 12> kOutputKinds{{
+inline constexpr std::array<OutputKind, 14> kOutputKinds{{
     {"color", "color", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true,
      Direction::None, false, true, "8-bit sRGB PNG, path traced"},
     {"flow", "flow", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true,
@@ -87,6 +87,14 @@ inline constexpr std::array<OutputKind, 12> kOutputKinds{{
      "glare and vignetting, shot and read noise, a filmic tone curve (meta.json `final`); the "
      "ground truth is the frame time's; opt-in (--outputs final): a second path trace, about "
      "2.5x the clean release's time"},
+    {"time", "time", ".exr", PixelType::Float32, 1, Resampling::Nearest, true, true,
+     Direction::None, false, false,
+     "float EXR, seconds since the sequence's start at which the pixel was captured: the frame's "
+     "time, plus its line's offset for a rolling-shutter camera (NaN outside a lens's image)"},
+    {"lens_mask", "lens_mask", ".png", PixelType::UInt8, 1, Resampling::Nearest, true, true,
+     Direction::None, false, false,
+     "8-bit, 1 where water drops or dirt on the lens hide the scene in the final pass (real "
+     "lenses; 0 on the ERP and cube faces); the ground truth stays the scene's"},
 }};
 
 // The row named `name`; throws std::invalid_argument for other names.

@@ -69,9 +69,9 @@ Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& c
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth);
-// The same from another viewpoint than the rig's (`pair`, at the frame's times).
+// The same as `view` sees it (a rig camera's request: its viewpoint, its rolling shutter).
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
-                           Renderer& renderer, const Projection& camera, const FramePair& pair,
+                           Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth);
 
 // meta.json of a planned sequence of a release: all but the 2-D boxes, which come from its
