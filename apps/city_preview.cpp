@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
                  "police delivery_van city_bus box_truck lorry motorbike bicycle man woman child "
                  "umbrella jogger)");
   finish_options(app, "city_preview");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
     for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
     for (const std::string& time : o.times_of_day) validate_time_of_day(time);

@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 4096));
   app.add_flag("--faces", options.faces, "also the cube faces");
   finish_options(app, "flowscape_explore");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   if (out.empty()) out = (fs::path(release) / kExplorerDir).string();
   try {
     const nlohmann::json statistics = write_explorer(release, out, options);

@@ -19,12 +19,12 @@ int main(int argc, char** argv) {
   app.add_option("release", out, "release folder the shards wrote into")->required();
   app.add_flag("--verify", verify, "recompute every file's sha256 and compare with the shards'");
   finish_options(app, "flowscape_merge");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
     const ReleaseConfig config = merge_shards(out, verify);
-    std::printf("%s/manifest.json: %d sequences, %d frames\n", out.c_str(),
-                config.maps * config.sequences_per_map,
-                config.maps * config.sequences_per_map * config.frames);
+    const int sequences = int(plan_sequences(config).size());
+    std::printf("%s/manifest.json: %d sequences, %d frames\n", out.c_str(), sequences,
+                sequences * config.frames);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(diagnostics(), "flowscape_merge: error: %s\n", e.what());

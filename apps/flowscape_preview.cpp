@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
   app.add_option("--width", width, "width of each tile")->check(CLI::Range(16, 4096));
   app.add_flag("--no-video", no_video, "contact sheets only");
   finish_options(app, "flowscape_preview");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   if (out.empty()) out = (fs::path(release) / "previews").string();
   try {
     std::vector<SequenceInfo> sequences;

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"clean", "final"}))
       ->capture_default_str();
   finish_options(app, "flowscape_split");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
     const Split split = split_sequences(read_release_sequences(release), seed);
     write_split_files(release, split);

@@ -27,9 +27,9 @@ int main(int argc, char** argv) {
       ->default_str("panoflow");
   app.add_option("--scale", options.scale,
                  "flow magnitude (px) drawn fully saturated; 0 picks it from the flow")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e6));
   finish_options(app, "flowviz");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   if (output.empty()) {
     std::filesystem::path out = input;
     output = out.replace_extension(out.extension() == ".png" ? ".viz.png" : ".png").string();

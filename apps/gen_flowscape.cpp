@@ -45,6 +45,28 @@ std::vector<int> parse_gaps(const std::string& text) {
   return gaps;
 }
 
+// A whole number >= 0 of an option, else a usage error naming it.
+int parse_count(const std::string& text, const char* option) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < 0)
+    throw CLI::ValidationError(std::string(option) + ": \"" + text +
+                               "\" is not a whole number >= 0");
+  return value;
+}
+
+// Options a rig other than the flowscape one cannot use: a usage error, not silently ignored.
+void refuse_rig_options(const nlohmann::json& given, const std::string& rig) {
+  if (rig == kFlowscapeRig) return;
+  if (given.contains("face_size") || given.contains("cube"))
+    throw std::invalid_argument(
+        std::string(given.contains("face_size") ? "--face-size" : "--no-cube") +
+        ": only the flowscape rig has cube faces (the rig is \"" + rig + "\")");
+  if (rig.ends_with(".json") && given.contains("resolution"))
+    throw std::invalid_argument("--resolution: the rig file " + rig +
+                                " sets its cameras' image sizes (their \"parameters\")");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -68,7 +90,21 @@ int main(int argc, char** argv) {
   app.add_option("--config", config_file,
                  "JSON with any of the options below; options given here win over the file, and "
                  "the file over --demo");
-  option("--maps", "maps", defaults.maps, "city maps (1-8)");
+  app.add_option_function<std::string>(
+         "--maps",
+         [&given](const std::string& text) {
+           if (text.find(',') == std::string::npos) {
+             given["maps"] = parse_count(text, "--maps");
+             return;
+           }
+           std::vector<int> maps;
+           for (const std::string& map : comma_list(text))
+             if (!map.empty()) maps.push_back(parse_count(map, "--maps"));
+           given["map_list"] = maps;
+         },
+         "city maps: a count N (maps 0..N-1, 1-8), or the chosen map numbers (0-7) separated by "
+         "commas (3,7; one map: 5,)")
+      ->default_str(std::to_string(defaults.maps));
   option("--sequences-per-map", "sequences_per_map", defaults.sequences_per_map,
          "sequences per map");
   option("--frames", "frames", defaults.frames, "frames per sequence (30 Hz)");
@@ -178,7 +214,7 @@ int main(int argc, char** argv) {
          "but flowscape (FlowScape's CARLA frames show no ego)");
   app.add_flag("--no-cube", no_cube, "ERP only: no cube faces (ERP colour rendered directly)");
   app.add_option("--shard", shard, "K/N: make only the sequences k with k % N == K");
-  app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "threads (0: all cores)")->check(CLI::Range(0, 1024));
   app.add_flag("--demo", sources.demo,
                "a small release in demo/ (1 map, 2 sequences of 4 frames, 128 x 256, 8 spp, sunny "
                "and rain) unless options say otherwise");
@@ -190,7 +226,7 @@ int main(int argc, char** argv) {
                "that the release should not (temporary files, foreign files, files missing or "
                "changed since manifest.json); write nothing");
   finish_options(app, "gen_flowscape");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
     if (!times.empty()) given["times_of_day"] = comma_list(times);
@@ -206,6 +242,12 @@ int main(int argc, char** argv) {
     if (!packs.empty()) given["asset_packs"] = packs;
     sources.file = config_file;
     ReleaseConfig c = resolve_config(sources);
+    try {
+      refuse_rig_options(given, c.rig);
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(diagnostics(), "gen_flowscape: error: %s (see --help)\n", e.what());
+      return kUsageError;
+    }
     if (!shard.empty()) parse_shard(shard, c);
     if (sources.demo && !out_option->count()) out = kDemoOut;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,

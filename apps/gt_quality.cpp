@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("-q,--quiet", quiet, "no progress line");
   finish_options(app, "gt_quality");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
     if (root.empty() == images.empty() || images.empty() != flows.empty())
       throw std::invalid_argument("give a dataset folder, or --images and --flows");

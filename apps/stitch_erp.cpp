@@ -27,14 +27,13 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"360", "classic"}));
   app.add_flag("--force", o.force,
                "redo outputs that exist (default: skip them, so reruns resume)");
-  app.add_option("--threads", threads, "worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   app.add_option("--demo", demo_dir,
                  "write the built-in analytic cubemap to DIR/cube and stitch it to DIR/erp");
   app.add_option("--face-size", face_size, "face size of the --demo cubemap")
       ->check(CLI::Range(2, 8192));
   finish_options(app, "stitch_erp");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = parse_options(app, argc, argv)) return *status;
   std::optional<tbb::global_control> limit;
   if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
   o.flow_mode = flow_mode == "classic" ? FlowMode::Classic : FlowMode::Wrap360;

@@ -3,6 +3,7 @@
 # (non-zero exit, one clear line naming the file, no damaged output).
 set -u
 bin=$1
+version=$2  # the project version (CMakeLists.txt)
 source "$(dirname "$0")/shell_checks.sh"
 
 check "stitch_erp --help" "$bin/stitch_erp" --help
@@ -45,5 +46,28 @@ check "city_preview: too many actors" fails_clearly "at most 200 vehicles and pe
 check "city_preview: no sheet after an error" test ! -e "$work/bad.png"
 check "city_preview renders weathers" "$bin/city_preview" --maps 1 --weathers sunny rain --height 24 --spp 1 --vehicles 5 --pedestrians 5 -o "$work/weathers.png"
 check "city_preview: unknown weather" fails_clearly 'unknown weather preset "snow"' "$bin/city_preview" --weathers snow -o "$work/bad.png"
+
+# a new user's slips (issue 35): misspelt options suggested, one exit status for usage errors,
+# --version everywhere, chosen maps, options a rig cannot use refused, a file as --out
+for app in flowviz stitch_erp flowscape_split flowscape_preview gt_quality gen_flowscape flowscape_merge flowscape_explore city_preview; do
+  check "$app --version says the toolkit's version" bash -c "'$bin/$app' --version | grep -qx 'flowscape $version'"
+  check "$app: an unknown option exits with status 2" bash -c "'$bin/$app' --no-such-option 2>/dev/null; [ \$? -eq 2 ]"
+done
+check "the Python package has the same version" grep -q "^version = \"$version\"" "$(dirname "$0")/../python/pyproject.toml"
+check "gen_flowscape: a misspelt option gets the nearest one" fails_clearly 'did you mean "--frames"?' "$bin/gen_flowscape" --frame 4
+check "gen_flowscape: --threads -1 names its range briefly" fails_clearly 'not in range 0 to 1024' "$bin/gen_flowscape" --threads -1
+check "gen_flowscape: --maps 3,7 renders those two maps" bash -c "'$bin/gen_flowscape' --maps 3,7 --frames 2 --check --out '$work/m' | grep -q '^16 sequences'"
+check "gen_flowscape: --maps 5, renders map 5 alone" bash -c "'$bin/gen_flowscape' --maps 5, --frames 2 --check --out '$work/m' | grep -q '^8 sequences'"
+check "gen_flowscape: a map out of range" fails_clearly "map_list must hold different map numbers in 0..7" "$bin/gen_flowscape" --maps 8, --frames 2 --check --out "$work/m"
+check "gen_flowscape: --no-cube with a lens rig" fails_clearly '--no-cube: only the flowscape rig has cube faces' "$bin/gen_flowscape" --rig fisheye --no-cube --check --out "$work/m"
+cat >"$work/rig.json" <<'JSON'
+{"name": "one", "cameras": [{"name": "front", "model": "pinhole",
+  "parameters": {"width": 32, "height": 24, "K": [[16, 0, 15.5], [0, 16, 11.5], [0, 0, 1]]},
+  "mount": {"position": [0, 0, 0], "yaw_pitch_roll_degrees": [0, 0, 0]}}]}
+JSON
+check "gen_flowscape: --resolution with a rig file" fails_clearly "--resolution: the rig file" "$bin/gen_flowscape" --rig "$work/rig.json" --resolution 64 --check --out "$work/m"
+touch "$work/a_file"
+check "gen_flowscape --check: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --frames 2 --check --out "$work/a_file"
+check "gen_flowscape: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 32 --face-size 16 --spp 1 --out "$work/a_file"
 
 finish

@@ -12,11 +12,11 @@ browser=$(command -v chromium || command -v chromium-browser) || {
   echo "FAILED: no chromium (scripts/install_deps.sh installs Debian's)"; exit 1; }
 chrome() { "$browser" --headless --no-sandbox --disable-gpu --allow-file-access-from-files \
   --hide-scrollbars --enable-logging=stderr --v=0 "$@"; }
-small=(--maps 1 --sequences-per-map 2 --frames 5 --resolution 32 --face-size 16 --spp 1
+small=(--maps 1 --sequences-per-map 2 --frames 5 --resolution 32 --spp 1
        --vehicles 12 --pedestrians 6 --weather sunny,rain)
 
 check "gen_flowscape writes the explorer with the release" \
-  "$bin/gen_flowscape" "${small[@]}" --outputs all --flow-gaps 1,2 --out "$work/a"
+  "$bin/gen_flowscape" "${small[@]}" --face-size 16 --outputs all --flow-gaps 1,2 --out "$work/a"
 check "the default page is there" test -s "$work/a/explorer/index.html" -a -s "$work/a/explorer/data.js"
 check "gt_quality --sample scores 1 pair per weather" \
   "$bin/gt_quality" "$work/a" --sample 1 --json "$work/a/quality.json" -q

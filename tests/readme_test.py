@@ -35,6 +35,11 @@ def readme_commands():
 
 
 def tiny(words, options=SIZE_OPTIONS, sizes=TINY):
+    rig = words[words.index("--rig") + 1] if "--rig" in words else "flowscape"
+    if rig != "flowscape":  # no faces; a rig file sets its own image sizes
+        dropped = {"--face-size"} | ({"--resolution"} if rig.endswith(".json") else set())
+        sizes = [w for k, w in enumerate(sizes)
+                 if w not in dropped and (k == 0 or sizes[k - 1] not in dropped)]
     out, skip = [], False
     for word in words:
         if skip:

@@ -8,6 +8,7 @@ falling loss, evaluating EPE per weather on the test split and saving checkpoint
 """
 import argparse
 import os
+import sys
 import time
 
 import torch
@@ -75,6 +76,9 @@ def main():
                                           crop=args.crop and tuple(args.crop), shift=False,
                                           jitter=True)
     train = flowscape.FlowScape(args.release, "train", transform=augmentation)
+    if len(train) < args.batch:  # drop_last would leave no batch at all: the loop would spin
+        sys.exit(f"train_small.py: {args.release}: the train split has {len(train)} pairs, fewer "
+                 f"than --batch {args.batch}; lower --batch or render more frames")
     loader = torch.utils.data.DataLoader(train, batch_size=args.batch, shuffle=True,
                                          num_workers=args.workers, drop_last=True,
                                          persistent_workers=args.workers > 0)
@@ -89,7 +93,7 @@ def main():
         step = state["step"]
     print(f"{len(train)} training pairs, {len(test)} test pairs, device {device}, native extension "
           f"{'yes' if flowscape.native_available() else 'no (numpy)'}")
-    start, window, first = time.time(), [], None
+    start, window, first, last = time.time(), [], None, None
     while step < args.steps:
         for img1, img2, flow, valid in loader:
             img1, img2, flow, valid = (t.to(device) for t in (img1, img2, flow, valid))
@@ -100,17 +104,18 @@ def main():
             optimizer.step()
             window.append(loss.item())
             step += 1
-            if step % 25 == 0:
-                mean = sum(window) / len(window)
-                first = mean if first is None else first
-                print(f"step {step:4d}  EPE loss {mean:7.3f}  ({time.time() - start:5.1f} s)")
+            if step % 25 == 0 or step >= args.steps:  # a report every 25 steps and at the end
+                last = sum(window) / len(window)
+                first = last if first is None else first
+                print(f"step {step:4d}  EPE loss {last:7.3f}  ({time.time() - start:5.1f} s)")
                 window = []
             if step >= args.steps or (args.eval_every and step % args.eval_every == 0):
                 evaluate_and_save(model, optimizer, step, test, device, args.checkpoints)
             if step >= args.steps:
                 break
-    print(f"loss fell from {first:.3f} to {mean:.3f}" if mean < first else
-          f"loss did not fall ({first:.3f} -> {mean:.3f})")
+    if first is not None:  # None: resumed at or past --steps, nothing trained
+        print(f"loss fell from {first:.3f} to {last:.3f}" if last < first else
+              f"loss did not fall ({first:.3f} -> {last:.3f})")
 
 
 if __name__ == "__main__":

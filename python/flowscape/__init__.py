@@ -2,6 +2,8 @@
 distortion augmentations (FDA-R, FDA-E), panoramic crops and shifts, photometric jitter, and
 EPE evaluation. Heavy per-pixel work runs in C++ (the `flowscape_native` extension built with the
 toolkit) when it is importable, in numpy otherwise; both give the same results."""
+__version__ = "0.10.0"  # the toolkit's (CMakeLists.txt project version, pyproject.toml)
+
 from .io import read_flo, write_flo, read_image, native_available
 from .dataset import FlowScape, Concat, pole_mask
 from .layout import ReleaseLayout

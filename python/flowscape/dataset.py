@@ -192,8 +192,11 @@ class FlowScape:
                                        for kind in self.outputs}
                     item.update(img1=file(self.image_kind, frame),
                                 img2=file(self.image_kind, frame + 1),
+                                # strings and ints only ("" for no face, no camera): torch's
+                                # default collate batches it
                                 meta={"scene": scene, "frame": frame, "weather": weather,
-                                      "map": map_name, "face": face, "camera": self.camera})
+                                      "map": map_name, "face": face or "",
+                                      "camera": self.camera or ""})
                     items.append(item)
         return items
 
@@ -214,7 +217,8 @@ class FlowScape:
                     items.append({"img1": os.path.join(side, weather, "img", scene, first),
                                   "img2": os.path.join(side, weather, "img", scene, second),
                                   "flow": os.path.join(side, weather, "flow", scene, stem + ".flo"),
-                                  "meta": {"scene": scene, "frame": int(stem), "weather": weather}})
+                                  "meta": {"scene": scene, "frame": int(stem), "weather": weather,
+                                           "map": "", "face": "", "camera": ""}})
         return items
 
     def __len__(self):

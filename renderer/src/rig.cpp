@@ -1,8 +1,11 @@
 #include "flowscape/renderer/rig.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
+
+#include "flowscape/core/names.h"
 
 namespace flowscape {
 namespace {
@@ -12,6 +15,21 @@ constexpr double kDegree = kPi / 180;
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("rig: " + what);
 }
+
+// Every key of `object` is one of `known` (a misspelt key: the nearest known one suggested).
+void require_known_keys(const nlohmann::json& object, const std::vector<std::string>& known,
+                        const std::string& what,
+                        const std::vector<std::pair<std::string, std::string>>& aliases = {}) {
+  for (const auto& [key, value] : object.items())
+    require(std::find(known.begin(), known.end(), key) != known.end(),
+            what + "unknown key \"" + key + "\"" + did_you_mean(key, known, aliases));
+}
+
+// Other names calibration tools give a lens's parameters (OpenCV's FileStorage, Kalibr).
+const std::vector<std::pair<std::string, std::string>> kParameterAliases = {
+    {"camera_matrix", "K"},     {"cameraMatrix", "K"},    {"intrinsics", "K"},
+    {"dist_coeffs", "D"},       {"distCoeffs", "D"},      {"distortion_coefficients", "D"},
+    {"distortion_coeffs", "D"}, {"image_width", "width"}, {"image_height", "height"}};
 
 Vec3 vector3(const nlohmann::json& value, const std::string& what) {
   require(value.is_array() && value.size() == 3, what + " must be 3 numbers");
@@ -59,13 +77,24 @@ RigCamera camera_from_json(const nlohmann::json& c) {
               name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos,
           "camera names are lower-case letters, digits, - and _ (got \"" + name + "\")");
   const std::string what = "camera \"" + name + "\": ";
+  require_known_keys(c, {"name", "model", "parameters", "mount", "rolling_shutter"}, what);
   const std::string model = c.value("model", "");
   const nlohmann::json parameters = c.value("parameters", nlohmann::json::object());
-  const nlohmann::json mount = c.value("mount", nlohmann::json::object());
+  require(c.contains("mount"),
+          what + "needs a \"mount\": {\"position\": [x, y, z] (metres, rig frame)" +
+              (model == "equirectangular" ? std::string("}")
+                                          : ", and \"yaw_pitch_roll_degrees\" or "
+                                            "\"camera_to_rig\"}"));
+  const nlohmann::json mount = c.at("mount");
   require(mount.is_object(), what + "\"mount\" must be an object");
+  require_known_keys(mount, {"position", "camera_to_rig", "yaw_pitch_roll_degrees"},
+                     what + "mount: ");
+  require(mount.contains("position"), what + "mount needs a \"position\" [x, y, z] (metres)");
+  require(model == "equirectangular" || mount.contains("camera_to_rig") ||
+              mount.contains("yaw_pitch_roll_degrees"),
+          what + "mount needs a rotation: \"yaw_pitch_roll_degrees\" or \"camera_to_rig\"");
   RigCamera camera{name, {}, Vec3::Zero()};
-  if (mount.contains("position"))
-    camera.position = vector3(mount.at("position"), what + "position");
+  camera.position = vector3(mount.at("position"), what + "position");
   Mat3 rotation = look(0, 0, 0);
   if (mount.contains("camera_to_rig"))
     rotation = rotation_rows(mount.at("camera_to_rig"), what + "camera_to_rig");
@@ -83,6 +112,10 @@ RigCamera camera_from_json(const nlohmann::json& c) {
       camera.projection = Projection::equirectangular(height);
     } else {
       camera.projection = Projection::of_lens(make_lens(model, parameters), rotation);
+      const nlohmann::json read_back = camera.projection.lens->parameters();
+      std::vector<std::string> known;
+      for (const auto& [key, value] : read_back.items()) known.push_back(key);
+      require_known_keys(parameters, known, what + "lens parameters: ", kParameterAliases);
     }
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
@@ -143,6 +176,7 @@ Rig rig_preset(const std::string& name, int size) {
 
 Rig rig_from_json(const nlohmann::json& json) {
   require(json.is_object(), "expected a JSON object {\"name\", \"cameras\"}");
+  require_known_keys(json, {"name", "cameras"}, "");
   Rig rig{json.value("name", "custom"), {}};
   const nlohmann::json cameras = json.value("cameras", nlohmann::json());
   require(cameras.is_array() && !cameras.empty() && cameras.size() <= 16,

@@ -571,3 +571,36 @@ def test_a_release_in_the_carla_0914_table_names_its_sky_and_drops_it(tmp_path):
         depth = io.read_image(layout.frame_file(scene, "depth", 0))[..., 0]
         assert set(np.unique(semantic_ids[np.isinf(depth)]).tolist()) == {11}
         assert semantic_ids.max() <= 29
+
+
+TRAIN_SMALL = os.path.join(os.path.dirname(__file__), "..", "..", "python", "examples", "train_small.py")
+
+
+def _train_small(release, tmp_path, *options):
+    return subprocess.run(["/usr/bin/python3", TRAIN_SMALL, str(release), "--workers", "0",
+                           "--checkpoints", str(tmp_path / "checkpoints"), *options],
+                          capture_output=True, text=True, timeout=300, env=os.environ)
+
+
+def test_train_small_refuses_a_batch_larger_than_the_train_split(tiny_release, tmp_path):
+    """Issue 35, point 3: it hung forever (drop_last left no batch)."""
+    run = _train_small(tiny_release, tmp_path, "--batch", "100000", "--steps", "2")
+    assert run.returncode != 0
+    assert "fewer than --batch 100000" in run.stderr
+
+
+def test_train_small_runs_fewer_steps_than_a_report(tiny_release, tmp_path):
+    """Issue 35, point 3: --steps below 25 crashed at the end (no loss reported yet)."""
+    run = _train_small(tiny_release, tmp_path, "--batch", "1", "--steps", "3", "--eval-every", "0")
+    assert run.returncode == 0, run.stderr
+    assert "step    3  EPE loss" in run.stdout
+    assert os.path.isfile(tmp_path / "checkpoints" / "latest.pt")
+
+
+def test_meta_batches_with_the_default_collate(tiny_release):
+    """Issue 35, point 4: extras=("meta",) crashed torch's default collate (None in meta)."""
+    dataset = flowscape.FlowScape(tiny_release, "train", extras=("meta",))
+    batch = next(iter(torch.utils.data.DataLoader(dataset, batch_size=2)))
+    meta = batch[4]["meta"]
+    assert meta["face"] == ["", ""] and meta["camera"] == ["", ""]
+    assert len(meta["scene"]) == 2 and meta["frame"].shape == (2,)

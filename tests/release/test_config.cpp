@@ -53,7 +53,11 @@ TEST_CASE("config sources: defaults, then --demo, then the config file, then the
   CHECK(resolve_config({false, file, {}}).maps == 8);  // the defaults under the file
   write_text(file, R"({"frams": 3})");
   CHECK_THROWS_WITH(resolve_config({false, file, {}}),
-                    Catch::Contains("config.json: release config: unknown key \"frams\""));
+                    Catch::Contains("config.json: release config: unknown key \"frams\" (did you "
+                                    "mean \"frames\"?)"));
+  write_text(file, R"({"weather": ["fog"]})");  // the flag is --weather, the key weathers
+  CHECK_THROWS_WITH(resolve_config({false, file, {}}),
+                    Catch::Contains("unknown key \"weather\" (did you mean \"weathers\"?)"));
   CHECK_THROWS_WITH(resolve_config({false, dir.path / "none.json", {}}),
                     Catch::Contains("none.json: file not found"));
   CHECK_THROWS_WITH(resolve_config({false, dir.path, {}}),

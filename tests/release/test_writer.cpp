@@ -171,7 +171,8 @@ TEST_CASE("a rolling-shutter camera writes its capture times and meta.json recor
   const fs::path rig_file = dir.path / "rolling.json";
   std::ofstream(rig_file) << R"({"name": "rolling", "cameras": [{"name": "front",
     "model": "pinhole", "parameters": {"width": 24, "height": 16,
-    "K": [[12, 0, 11.5], [0, 12, 7.5], [0, 0, 1]]}, "mount": {"position": [0, 0, 0]},
+    "K": [[12, 0, 11.5], [0, 12, 7.5], [0, 0, 1]]},
+    "mount": {"position": [0, 0, 0], "yaw_pitch_roll_degrees": [0, 0, 0]},
     "rolling_shutter": {"readout_ms": 32, "lines": "rows"}}]})";
   ReleaseConfig config = tiny_release_config(1, 2);
   config.rig = rig_file.string();

@@ -70,7 +70,8 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
           "camera \"left_fisheye\": lens parameter \"K\"");
   refused(
       [](nlohmann::json& j) {
-        j["cameras"][0]["mount"] = {{"camera_to_rig", {{1, 0, 0}, {0, 1, 0}, {0, 0, 2}}}};
+        j["cameras"][0]["mount"] = {{"position", {0, 0, 0}},
+                                    {"camera_to_rig", {{1, 0, 0}, {0, 1, 0}, {0, 0, 2}}}};
       },
       "camera_to_rig must be a rotation");
   refused(
@@ -98,6 +99,36 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
         j["cameras"][0]["rolling_shutter"] = {{"readout", 20}};
       },
       "rolling_shutter: unknown key \"readout\"");
+  // a new user's slips (issue 35, point 1): each refused by name, the intended key suggested
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["mount"] = {{"positon", {0.5, 1, -0.2}},
+                                    {"yaw_pitch_roll_degrees", {90, -10, 0}}};
+      },
+      "camera \"left_fisheye\": mount: unknown key \"positon\" (did you mean \"position\"?)");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["mount"] = {{"position", {0.5, 1, -0.2}},
+                                    {"yaw_pitch_roll_deg", {90, -10, 0}}};
+      },
+      "unknown key \"yaw_pitch_roll_deg\" (did you mean \"yaw_pitch_roll_degrees\"?)");
+  refused(
+      [](nlohmann::json& j) {
+        j["cameras"][0]["parameters"]["dist_coeffs"] = {0, 0, 0, 0};
+      },
+      "lens parameters: unknown key \"dist_coeffs\" (did you mean \"D\"?)");
+  refused([](nlohmann::json& j) { j["cameras"][0]["parameters"]["max_angle_degree"] = 95; },
+          "unknown key \"max_angle_degree\" (did you mean \"max_angle_degrees\"?)");
+  refused([](nlohmann::json& j) { j["cameras"][0].erase("mount"); },
+          "camera \"left_fisheye\": needs a \"mount\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["mount"].erase("yaw_pitch_roll_degrees"); },
+          "mount needs a rotation");
+  refused([](nlohmann::json& j) { j["cameras"][0]["mount"].erase("position"); },
+          "mount needs a \"position\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["modle"] = "equidistant"; },
+          "unknown key \"modle\" (did you mean \"model\"?)");
+  refused([](nlohmann::json& j) { j["camera"] = j["cameras"]; },
+          "rig: unknown key \"camera\" (did you mean \"cameras\"?)");
   refused([](nlohmann::json& j) { j["cameras"] = nlohmann::json::array(); },
           "\"cameras\" must list 1 to 16 cameras");
   CHECK_THROWS_WITH(rig_preset("gopro", 64), Catch::Contains("unknown rig \"gopro\""));

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/names.h"
 #include "flowscape/core/random.h"
 #include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
@@ -25,7 +26,8 @@ void require(bool ok, const std::string& what) {
 // The JSON keys of a ReleaseConfig and the members they hold, written and read from this one list.
 template <class Config, class Visit>
 void for_each_field(Config& c, Visit&& visit) {
-  visit("maps", c.maps), visit("sequences_per_map", c.sequences_per_map);
+  visit("maps", c.maps), visit("map_list", c.map_list);
+  visit("sequences_per_map", c.sequences_per_map);
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
   visit("weathers", c.weathers), visit("times_of_day", c.times_of_day);
@@ -63,6 +65,11 @@ T checked_value(const nlohmann::json& value, const char* key) {
 
 void validate(const ReleaseConfig& c) {
   require(c.maps >= 1 && c.maps <= kMapCount, "maps must be in 1.." + std::to_string(kMapCount));
+  for (std::size_t k = 0; k < c.map_list.size(); ++k)
+    require(c.map_list[k] >= 0 && c.map_list[k] < kMapCount &&
+                std::find(c.map_list.begin(), c.map_list.begin() + long(k), c.map_list[k]) ==
+                    c.map_list.begin() + long(k),
+            "map_list must hold different map numbers in 0.." + std::to_string(kMapCount - 1));
   require(c.sequences_per_map >= 1 && c.sequences_per_map <= 99,
           "sequences_per_map must be in 1..99");
   require(c.frames >= 2 && c.frames <= 999999, "frames must be in 2..999999");
@@ -165,9 +172,12 @@ nlohmann::json to_json(const ReleaseConfig& c) {
 ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c) {
   if (!j.is_object()) throw std::invalid_argument("release config: expected a JSON object");
   nlohmann::json merged = to_json(c);
+  std::vector<std::string> known;
+  for (const auto& [key, value] : merged.items()) known.push_back(key);
   for (const auto& [key, value] : j.items()) {
     if (!merged.contains(key))
-      throw std::invalid_argument("release config: unknown key \"" + key + "\"");
+      throw std::invalid_argument("release config: unknown key \"" + key + "\"" +
+                                  did_you_mean(key, known, {{"weather", "weathers"}}));
     merged[key] = value;
   }
   try {
@@ -259,9 +269,16 @@ void check_sky_resolution(const ReleaseConfig& c) {
   for (const std::string& sky : c.skies) check_sky_resolution(sky, std::max(erp, faces));
 }
 
+std::vector<int> release_maps(const ReleaseConfig& c) {
+  if (!c.map_list.empty()) return c.map_list;
+  std::vector<int> maps;
+  for (int m = 0; m < c.maps; ++m) maps.push_back(m);
+  return maps;
+}
+
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
   std::vector<SequencePlan> plans;
-  for (int m = 0; m < c.maps; ++m)
+  for (int m : release_maps(c))
     for (int s = 0; s < c.sequences_per_map; ++s) {
       const int number = int(plans.size());
       const bool turns = c.ego_routes == "mix" && std::floor((number + 1) * c.turn_share) >

@@ -278,6 +278,8 @@ std::vector<ReleaseProblem> release_problems(const fs::path& out, const ReleaseC
     release.insert(file);
   for (const fs::path& file : dataset_card_files(config)) release.insert(file);
   std::vector<ReleaseProblem> problems;
+  if (fs::exists(out) && !fs::is_directory(out))
+    throw FileError(out, "is a file, not a folder: a release needs a folder");
   if (!fs::is_directory(out)) return problems;
   for (const auto& entry : fs::recursive_directory_iterator(out)) {
     if (!entry.is_regular_file()) continue;

@@ -299,6 +299,7 @@ nlohmann::json recorded_config(const fs::path& out) {
     if (!recorded.contains("ego")) recorded["ego"] = ReleaseConfig{}.ego;
     if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
     if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
+    if (!recorded.contains("map_list")) recorded["map_list"] = nlohmann::json::array();
     const nlohmann::json now = to_json(ReleaseConfig{});
     for (const char* key :
          {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
@@ -393,6 +394,8 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
   // Only a process that makes the whole release owns the folder's top level: a shard may run
   // beside others writing config.json, so their temporaries are the merge's to remove.
   check_sky_resolution(config);
+  if (fs::exists(out) && !fs::is_directory(out))
+    throw FileError(out, "is a file, not a folder: a release needs a folder");
   if (config.shards == 1) remove_temporary_files(out);
   claim_release(config, out, force);
   const std::vector<SequencePlan> mine = shard_plans(config);

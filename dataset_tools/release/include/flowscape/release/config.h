@@ -15,6 +15,9 @@ namespace flowscape {
 
 struct ReleaseConfig {
   int maps = 8, sequences_per_map = 8, frames = 100;
+  // Chosen maps (0-7) instead of the first `maps`: each map's sequences as the whole release has
+  // them (names, seeds), so one map of a release can be rendered on its own.
+  std::vector<int> map_list{};
   int height = 512;     // ERP height; width = 2 x height
   int face_size = 256;  // cube faces: 256 matches a 512 x 1024 ERP at the equator
   // Samples per pixel, and how many of them (at most spp) go on from the first surface to gather
@@ -147,6 +150,8 @@ struct SequencePlan {
   std::uint64_t seed;
   bool turns;  // its ego turns at a junction (ReleaseConfig::turn_share of ego_routes "mix")
 };
+// The maps a release renders: map_list, else 0 .. maps - 1.
+std::vector<int> release_maps(const ReleaseConfig& c);
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& config);  // every shard's
 std::vector<std::string> sequence_names(const ReleaseConfig& config);   // theirs, in that order
 bool in_shard(const SequencePlan& plan, const ReleaseConfig& config);
