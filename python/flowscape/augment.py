@@ -227,16 +227,18 @@ class Augmentation:
     probability `stretch_probability`; flips left-right / upside down with `h_flip` / `v_flip`
     probability; for panoramas a random horizontal shift; a crop to `crop` (height, width; cyclic
     on panoramas), the sample first scaled up when it is smaller than the crop; photometric jitter.
-    panorama=False (pinhole views, e.g. FlowScape(faces=...)): no shift, plain crops.
+    panorama=None (the default) follows the sample's view (FlowScape states it: the ERP and
+    equirectangular cameras wrap round, cube faces, pinholes and fisheyes do not); False: no shift,
+    plain crops (the image circle and the seam stay where they are); True: always a panorama.
     Each DataLoader worker draws its own numbers (seeded from torch's worker seed)."""
 
     def __init__(self, fda=None, fda_probability=0.5, crop=None, shift=True, jitter=True, seed=None,
                  scale=None, scale_probability=0.8, stretch=0.2, stretch_probability=0.8,
-                 h_flip=0.0, v_flip=0.0, panorama=True):
+                 h_flip=0.0, v_flip=0.0, panorama=None):
         if fda not in (None, "r", "e"):
             raise ValueError(f"fda must be None, 'r' or 'e', not {fda!r}")
         self.fda, self.fda_probability, self.crop = fda, fda_probability, crop
-        self.shift, self.jitter, self.seed, self.rng = shift and panorama, jitter, seed, None
+        self.shift, self.jitter, self.seed, self.rng = shift, jitter, seed, None
         self.scale, self.scale_probability = scale, scale_probability
         self.stretch, self.stretch_probability = stretch, stretch_probability
         self.h_flip, self.v_flip, self.panorama = h_flip, v_flip, panorama
@@ -270,10 +272,11 @@ class Augmentation:
             sample = flip(sample, horizontal=True)
         if rng.uniform() < self.v_flip:
             sample = flip(sample, horizontal=False)
-        if self.shift:
+        panorama = sample.get("panorama", True) if self.panorama is None else self.panorama
+        if self.shift and panorama:
             sample = horizontal_shift(sample, int(rng.integers(0, sample["flow"].shape[1])))
         if self.crop:
-            sample = (cyclic_crop if self.panorama else crop)(sample, self.crop[0], self.crop[1], rng)
+            sample = (cyclic_crop if panorama else crop)(sample, self.crop[0], self.crop[1], rng)
         if self.jitter:
             sample = photometric_jitter(sample, rng)
         return sample

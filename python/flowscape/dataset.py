@@ -128,6 +128,8 @@ class FlowScape:
         # (conventions); the PanoFlow tree's flow is read as it is stored
         self.stored_seam, self.unknown_flow = "360", UNKNOWN_FLOW
         self.panorama = self.faces is None  # a camera of a rig may say otherwise
+        if not os.path.isdir(self.root):
+            raise ValueError(f"{self.root}: no such folder (a FlowScape release or a PanoFlow tree)")
         if self.faces is not None and (set(self.faces) - set(FACES) or not self.faces):
             raise ValueError(f"faces must be some of {FACES}, not {faces!r}")
         if os.path.isfile(os.path.join(self.root, "manifest.json")):
@@ -145,6 +147,18 @@ class FlowScape:
                              "the PanoFlow tree has none")
         if not self.items:
             raise ValueError(f"{self.root}: no {split} pairs" + (f" for {weathers}" if weathers else ""))
+        self._require_files()
+
+    def _require_files(self):
+        """Every file the items name is there: a missing one is named now, not mid-epoch."""
+        missing = [path for item in self.items
+                   for path in [item[k] for k in ("img1", "img2", "flow", "valid") if k in item]
+                   + [path for path, _ in item.get("outputs", {}).values()]
+                   if not os.path.isfile(path)]
+        if missing:
+            raise ValueError(f"{missing[0]}: missing" + (f" (and {len(missing) - 1} more files of the "
+                             "split)" if len(missing) > 1 else "") + "; rerun the gen_flowscape "
+                             "command that made the release to render them")
 
     def _release_items(self, split, weathers):
         layout = ReleaseLayout(self.root)
@@ -155,6 +169,10 @@ class FlowScape:
         if self.camera is None and layout.cameras and self.faces is None:
             raise ValueError(f"{self.root}: its rig has no ERP; pick a camera: "
                              f"{', '.join(layout.cameras)}")
+        if self.faces is not None and (layout.cameras or not layout.layout.get("cube_faces", True)):
+            raise ValueError(f"{self.root}: the release has no cube faces (" +
+                             (f"its rig's cameras: {', '.join(layout.cameras)}; pick one with camera="
+                              if layout.cameras else "made with --no-cube") + ")")
         if self.camera is not None and self.camera not in layout.cameras:
             raise ValueError(f"{self.root}: no camera {self.camera!r} (the rig has "
                              f"{', '.join(layout.cameras) or 'the ERP and the cube only'})")
@@ -255,7 +273,8 @@ class FlowScape:
             flow = classic_flow(flow) if self.flow_mode == "classic" else wrapped_flow(flow)
         sample = {"img1": read_image(item["img1"])[..., :3].astype(np.float32),
                   "img2": read_image(item["img2"])[..., :3].astype(np.float32),
-                  "flow": flow, "valid": valid.astype(np.float32), "meta": dict(item["meta"])}
+                  "flow": flow, "valid": valid.astype(np.float32), "meta": dict(item["meta"]),
+                  "panorama": panorama}  # the view wraps round: what Augmentation shifts and crops
         for kind, (path, is_flow) in item.get("outputs", {}).items():
             sample[kind] = read_flo(path) if is_flow else read_image(path)
         if self.exclude_sky or "semantic" in self.extras:

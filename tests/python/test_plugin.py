@@ -604,3 +604,39 @@ def test_meta_batches_with_the_default_collate(tiny_release):
     meta = batch[4]["meta"]
     assert meta["face"] == ["", ""] and meta["camera"] == ["", ""]
     assert len(meta["scene"]) == 2 and meta["frame"].shape == (2,)
+
+
+def test_the_default_augmentation_keeps_a_fisheye_view_whole(rig_releases):
+    """Issue 35, point 5: the default Augmentation rolled and cyclically cropped fisheye images
+    (the image circle cut, the seam mid-image); now it follows the view (no roll, plain crops)."""
+    plain = flowscape.FlowScape(rig_releases["fisheye"], "train", camera="front", as_tensors=False)
+    augmented = flowscape.FlowScape(rig_releases["fisheye"], "train", camera="front",
+                                    as_tensors=False,
+                                    transform=flowscape.Augmentation(jitter=False, seed=3))
+    before, after = plain[0], augmented[0]
+    assert before["panorama"] is False
+    # no shift, no crop asked: the same image, circle and all
+    assert np.array_equal(before["img1"], after["img1"])
+    cropped = flowscape.Augmentation(jitter=False, seed=3, crop=(32, 32))(plain.sample(0))
+    h, w = before["flow"].shape[:2]
+    # a plain crop: a window of the image (found at one offset), never wrapped round
+    window = cropped["img1"]
+    assert any(np.array_equal(window, before["img1"][y:y + 32, x:x + 32])
+               for y in range(h - 31) for x in range(w - 31))
+
+
+def test_bad_roots_faces_and_missing_files_are_named_when_the_dataset_is_made(
+        tiny_release, rig_releases, tmp_path):
+    """Issue 35, point 8: these failed mid-epoch with a raw FileNotFoundError, or blamed the split."""
+    with pytest.raises(ValueError, match="no-such-release: no such folder"):
+        flowscape.FlowScape(tmp_path / "no-such-release", "train")
+    with pytest.raises(ValueError, match="has no cube faces .*pick one with camera="):
+        flowscape.FlowScape(rig_releases["fisheye"], "train", faces=("front",))
+    import shutil
+    damaged = tmp_path / "damaged"
+    shutil.copytree(tiny_release, damaged, symlinks=True)
+    scene, frame = open(damaged / "splits" / "train.txt").readline().split()
+    image = damaged / "sequences" / scene / "erp" / "color" / f"{int(frame) + 1:06d}.png"
+    image.unlink()
+    with pytest.raises(ValueError, match=f"{image}: missing"):
+        flowscape.FlowScape(damaged, "train")

@@ -50,6 +50,31 @@ TEST_CASE("a release without cube faces writes no cube entry") {
   CHECK(meta_from_json(to_json(m)).face_size == 0);
 }
 
+TEST_CASE("meta.json's schema 2: views hold view records only, no ERP record without an ERP") {
+  // issue 35, point 10: a rig without an ERP recorded a 512 x 1024 ERP, and "views" mixed strings
+  SequenceMeta m = example();
+  m.views = views_json(m.erp_height, m.face_size);
+  const nlohmann::json j = to_json(m);
+  CHECK(j["schema"] == kMetaSchema);
+  CHECK(j["frames_of_reference"]["camera"].get<std::string>().starts_with("x right, y down"));
+  for (const auto& [name, view] : j["views"].items()) {
+    INFO(name);
+    CHECK(view.is_object());
+  }
+  m.erp_height = 0, m.face_size = 0;  // another rig's sequence
+  CHECK_FALSE(to_json(m).contains("erp"));
+  CHECK(meta_from_json(to_json(m)).erp_height == 0);
+  // schema 1 (flowscape 0.9): the frames' descriptions among the views, read without them
+  nlohmann::json old = j;
+  old.erase("schema"), old.erase("frames_of_reference");
+  old["views"]["camera_frame"] = "x right, y down, z forward";
+  old["views"]["rig_frame"] = "x forward, y left, z up";
+  const SequenceMeta back = meta_from_json(old);
+  CHECK_FALSE(back.views.contains("camera_frame"));
+  CHECK(back.views.contains("erp"));
+  CHECK(back.erp_height == 16);
+}
+
 TEST_CASE("a missing or broken meta.json is named") {
   TempDir dir;
   CHECK_THROWS_WITH(read_meta(dir.path), Catch::Contains("meta.json: missing"));

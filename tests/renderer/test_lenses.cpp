@@ -223,7 +223,7 @@ TEST_CASE(
 }
 
 TEST_CASE("bad lens parameters are named") {
-  CHECK_THROWS_WITH(make_lens("fisheye", {}), Catch::Contains("unknown camera model \"fisheye\""));
+  CHECK_THROWS_WITH(make_lens("fishey", {}), Catch::Contains("unknown camera model \"fishey\""));
   CHECK_THROWS_WITH(make_lens("kannala_brandt", {{"width", 64}, {"height", 64}}),
                     Catch::Contains("\"K\" must be 3 rows of 3"));
   const nlohmann::json K = {{30, 0, 31.5}, {0, 30, 31.5}, {0, 0, 1}};

@@ -64,8 +64,10 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
           "two cameras are named \"left_fisheye\"");
   refused([](nlohmann::json& j) { j["cameras"][0]["name"] = "Left Fisheye"; },
           "camera names are lower-case letters");
-  refused([](nlohmann::json& j) { j["cameras"][0]["model"] = "fisheye"; },
-          "camera \"left_fisheye\": unknown camera model \"fisheye\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["model"] = "fishey"; },
+          "camera \"left_fisheye\": unknown camera model \"fishey\"");
+  refused([](nlohmann::json& j) { j["cameras"][0]["model"] = "omni"; },
+          "camera model \"omni\" (Kalibr's unified omnidirectional (Mei) model) is not one");
   refused([](nlohmann::json& j) { j["cameras"][0]["parameters"].erase("K"); },
           "camera \"left_fisheye\": lens parameter \"K\"");
   refused(
@@ -132,6 +134,36 @@ TEST_CASE("a rig file reads back what it says and names what is wrong") {
   refused([](nlohmann::json& j) { j["cameras"] = nlohmann::json::array(); },
           "\"cameras\" must list 1 to 16 cameras");
   CHECK_THROWS_WITH(rig_preset("gopro", 64), Catch::Contains("unknown rig \"gopro\""));
+}
+
+TEST_CASE("a calibration's own names: OpenCV's fisheye model, a flat K as FileStorage writes it") {
+  // issue 35, point 2: both were refused
+  const nlohmann::json rows = {{18, 0, 31.5}, {0, 18, 31.5}, {0, 0, 1}};
+  const nlohmann::json flat = {18, 0, 31.5, 0, 18, 31.5, 0, 0, 1};
+  const auto camera = [](const std::string& model, const nlohmann::json& k) {
+    return nlohmann::json{
+        {"name", "front"},
+        {"model", model},
+        {"parameters",
+         {{"width", 64},
+          {"height", 64},
+          {"K", k},
+          {"D", {0.01, 0, 0, 0}},
+          {"max_angle_degrees", 95}}},
+        {"mount", {{"position", {0, 0, 0}}, {"yaw_pitch_roll_degrees", {0, 0, 0}}}}};
+  };
+  const Rig opencv = rig_from_json({{"cameras", {camera("fisheye", flat)}}});
+  const Rig ours = rig_from_json({{"cameras", {camera("kannala_brandt", rows)}}});
+  CHECK(opencv.cameras[0].projection.lens->model() == "kannala_brandt");
+  CHECK(to_json(opencv) == to_json(ours));  // read back in our names: the same camera
+  const Vec2 pixel(10.25, 40.5);
+  CHECK(opencv.cameras[0].projection.ray(pixel).isApprox(ours.cameras[0].projection.ray(pixel)));
+  nlohmann::json radtan = camera("plumb_bob", flat);  // Kalibr's four coefficients: k3 = 0
+  radtan["parameters"].erase("max_angle_degrees");
+  const Rig pinhole = rig_from_json({{"cameras", {radtan}}});
+  CHECK(pinhole.cameras[0].projection.lens->model() == "pinhole");
+  CHECK(to_json(pinhole)["cameras"][0]["parameters"]["D"] ==
+        nlohmann::json{0.01, 0.0, 0.0, 0.0, 0.0});
 }
 
 TEST_CASE("the presets hold the cameras and image sizes they say") {

@@ -14,6 +14,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kRigFrame = "x forward, y left, z up; rig pose = rig -> world, 3x4 row-major";
+constexpr const char* kCameraFrame =
+    "x right, y down, z forward; a view's camera_to_rig maps it to the rig frame";
 
 Pose pose_from_row_major(const nlohmann::json& values) {
   const auto v = values.get<std::vector<double>>();
@@ -40,8 +42,6 @@ nlohmann::json pose_row_major(const Pose& pose) {
 nlohmann::json views_json(int erp_height, int face_size) {
   const int W = 2 * erp_height;
   nlohmann::json views = {
-      {"camera_frame", "x right, y down, z forward; camera_to_rig maps it to the rig frame"},
-      {"rig_frame", kRigFrame},
       {kErpDir,
        {{"model", "equirectangular"},
         {"width", W},
@@ -132,23 +132,25 @@ std::string SequenceMeta::base_weather() const {
 nlohmann::json to_json(const SequenceMeta& m) {
   nlohmann::json poses = nlohmann::json::array();
   for (const Pose& pose : m.poses) poses.push_back(pose_row_major(pose));
-  nlohmann::json j = {
-      {"scene", m.scene},
-      {"map", m.map},
-      {"map_name", m.map_name},
-      {"sequence", m.sequence},
-      {"seed", m.seed},
-      {"weather", m.weather},
-      {"frames", m.frames},
-      {"fps", m.fps},
-      {"erp", {{"width", 2 * m.erp_height}, {"height", m.erp_height}, {"flow", "360-degree"}}},
-      {"camera",
-       {{"height_above_ego", m.camera_height},
-        {"pitch_sway_degrees", m.camera_pitch_sway},
-        {"roll_sway_degrees", m.camera_roll_sway},
-        {"frame", kRigFrame}}},
-      {"poses", poses},
-      {"city", m.city}};
+  nlohmann::json j = {{"schema", kMetaSchema},
+                      {"frames_of_reference", {{"rig", kRigFrame}, {"camera", kCameraFrame}}},
+                      {"scene", m.scene},
+                      {"map", m.map},
+                      {"map_name", m.map_name},
+                      {"sequence", m.sequence},
+                      {"seed", m.seed},
+                      {"weather", m.weather},
+                      {"frames", m.frames},
+                      {"fps", m.fps},
+                      {"camera",
+                       {{"height_above_ego", m.camera_height},
+                        {"pitch_sway_degrees", m.camera_pitch_sway},
+                        {"roll_sway_degrees", m.camera_roll_sway},
+                        {"frame", kRigFrame}}},
+                      {"poses", poses},
+                      {"city", m.city}};
+  if (m.erp_height > 0)
+    j["erp"] = {{"width", 2 * m.erp_height}, {"height", m.erp_height}, {"flow", "360-degree"}};
   if (m.face_size > 0) {
     nlohmann::json faces = nlohmann::json::array();
     for (Face face : kFaces) faces.push_back(face_name(face));
@@ -175,7 +177,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.weather = j.at("weather");
     m.frames = j.at("frames").get<int>();
     m.fps = j.at("fps").get<double>();
-    m.erp_height = j.at("erp").at("height").get<int>();
+    if (j.contains("erp")) m.erp_height = j.at("erp").at("height").get<int>();
     m.camera_height = j.at("camera").at("height_above_ego").get<double>();
     m.camera_pitch_sway = j.at("camera").value("pitch_sway_degrees", 0.0);
     m.camera_roll_sway = j.at("camera").value("roll_sway_degrees", 0.0);
@@ -183,6 +185,8 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.city = j.value("city", nlohmann::json());
     if (j.contains("cube")) m.face_size = j.at("cube").at("face_size").get<int>();
     m.views = j.value("views", nlohmann::json());
+    if (m.views.is_object())  // schema 1 held the frames' descriptions among the views
+      for (const char* text : {"camera_frame", "rig_frame"}) m.views.erase(text);
     m.actors = j.value("actors", nlohmann::json());
     m.boxes = j.value("boxes_2d", nlohmann::json());
     m.rig = j.value("rig", nlohmann::json());

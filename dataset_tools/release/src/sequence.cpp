@@ -168,8 +168,7 @@ nlohmann::json matrix_rows(const Mat3& m) {
 // The views of another rig than flowscape: each camera's model, parameters (as its lens states
 // them: OpenCV's K and D for Kannala-Brandt), image and mount.
 nlohmann::json rig_views_json(const Rig& rig) {
-  nlohmann::json views = {
-      {"camera_frame", "x right, y down, z forward; camera_to_rig maps it to the rig frame"}};
+  nlohmann::json views = nlohmann::json::object();
   for (const RigCamera& camera : rig.cameras) {
     const Projection& p = camera.projection;
     const bool erp = p.kind == Projection::Kind::Equirectangular;
@@ -199,13 +198,13 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.weather = to_json(s.weather);
   meta.weather["exposure"] = s.city.scene.environment.exposure;  // the sky's, applied to all light
   meta.frames = config.frames, meta.fps = kFrameRate;
-  meta.erp_height = config.height;
   meta.camera_height = s.city.mount.height;
   meta.camera_pitch_sway = s.city.mount.pitch_amplitude * 180 / kPi;
   meta.camera_roll_sway = s.city.mount.roll_amplitude * 180 / kPi;
   for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(Sequence::time(f)));
   meta.city = to_json(s.city);
   const Rig rig = release_rig(config);
+  meta.erp_height = rig.cameras.empty() ? config.height : 0;  // another rig has no ERP
   meta.face_size = config.cube && rig.cameras.empty() ? config.face_size : 0;
   meta.views =
       rig.cameras.empty() ? views_json(config.height, meta.face_size) : rig_views_json(rig);

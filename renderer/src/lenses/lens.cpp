@@ -16,16 +16,25 @@ std::shared_ptr<const Lens> panoramic_annular(int size, double band_degrees);
 }  // namespace lens
 
 std::shared_ptr<const Lens> make_lens(const std::string& model, const nlohmann::json& p) {
-  if (model == "pinhole") return lens::make_pinhole(p);
+  // OpenCV's and Kalibr's names for the same models
+  if (model == "pinhole" || model == "plumb_bob" || model == "radtan") return lens::make_pinhole(p);
+  if (model == "fisheye") return lens::make_kannala_brandt(p, false);  // cv::fisheye
   if (model == "equidistant") return lens::make_kannala_brandt(p, true);
   if (model == "kannala_brandt") return lens::make_kannala_brandt(p, false);
   if (model == "double_sphere") return lens::make_double_sphere(p);
   if (model == "woodscape") return lens::make_woodscape(p);
   if (model == "dual_fisheye") return lens::make_dual_fisheye(p);
   if (model == "panoramic_annular") return lens::make_panoramic_annular(p);
+  if (model == "omni" || model == "eucm")
+    throw std::invalid_argument(
+        "camera model \"" + model + "\" (Kalibr's " +
+        (model == "omni" ? "unified omnidirectional (Mei)" : "enhanced unified") +
+        " model) is not one of this toolkit's lenses: calibrate with "
+        "double_sphere or kannala_brandt (Kalibr's ds, pinhole-equi)");
   throw std::invalid_argument("unknown camera model \"" + model +
                               "\" (pinhole, equidistant, kannala_brandt, double_sphere, "
-                              "woodscape, dual_fisheye, panoramic_annular)");
+                              "woodscape, dual_fisheye, panoramic_annular; OpenCV's fisheye and "
+                              "plumb_bob, Kalibr's radtan name two of them)");
 }
 
 std::shared_ptr<const Lens> kannala_brandt_200(int size) {

@@ -42,9 +42,16 @@ Intrinsics intrinsics(const nlohmann::json& p) {
   const std::string what =
       "lens parameter \"K\" must be 3 rows of 3 finite numbers "
       "[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]";
-  require(p.is_object() && p.contains("K") && p.at("K").is_array() && p.at("K").size() == 3, what);
+  require(p.is_object() && p.contains("K") && p.at("K").is_array(), what);
+  const nlohmann::json& k = p.at("K");
   std::vector<std::vector<double>> rows;
-  for (const nlohmann::json& row : p.at("K")) rows.push_back(numbers({{"K", row}}, "K", 3));
+  if (k.size() == 9) {  // flat, row by row, as cv::FileStorage writes a matrix's "data"
+    const std::vector<double> flat = numbers(p, "K", 9);
+    for (int r = 0; r < 3; ++r) rows.emplace_back(flat.begin() + 3 * r, flat.begin() + 3 * r + 3);
+  } else {
+    require(k.size() == 3, what + " (or 9 numbers row by row)");
+    for (const nlohmann::json& row : k) rows.push_back(numbers({{"K", row}}, "K", 3));
+  }
   require(rows[0][1] == 0 && rows[1][0] == 0 && rows[2] == std::vector<double>{0, 0, 1}, what);
   require(rows[0][0] > 0 && rows[1][1] > 0, "lens focal lengths fx, fy must be positive");
   return {rows[0][0], rows[1][1], rows[0][2] + 0.5, rows[1][2] + 0.5};

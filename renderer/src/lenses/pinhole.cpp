@@ -1,6 +1,7 @@
 // A pinhole with any K and OpenCV's radial-tangential distortion (cv::projectPoints, D = k1, k2,
 // p1, p2, k3): x' = x (1 + k1 r^2 + k2 r^4 + k3 r^6) + 2 p1 x y + p2 (r^2 + 2 x^2), y' likewise,
-// pixel = K (x', y', 1), of the normalised point (x, y) = (X / Z, Y / Z).
+// pixel = K (x', y', 1), of the normalised point (x, y) = (X / Z, Y / Z). Four coefficients (as
+// Kalibr's radtan gives them) mean k3 = 0.
 #include <Eigen/Dense>
 
 #include "lens_math.h"
@@ -8,10 +9,16 @@
 namespace flowscape::lens {
 namespace {
 
+std::vector<double> distortion(const nlohmann::json& p) {
+  const bool four = p.contains("D") && p.at("D").is_array() && p.at("D").size() == 4;
+  std::vector<double> d = numbers(p, "D", four ? 4 : 5, std::vector<double>(5, 0));
+  d.resize(5, 0);
+  return d;
+}
+
 class Pinhole : public SizedLens {
  public:
-  explicit Pinhole(const nlohmann::json& p)
-      : SizedLens(p), k_(intrinsics(p)), d_(numbers(p, "D", 5, std::vector<double>(5, 0))) {
+  explicit Pinhole(const nlohmann::json& p) : SizedLens(p), k_(intrinsics(p)), d_(distortion(p)) {
     // where the radial part stops growing, up to 84 degrees off the axis (r = 10)
     max_r_ = increasing_until([this](double r) { return r * radial(r * r); }, 10);
     require(max_r_ > 0.05, "lens distortion folds back right next to the axis");

@@ -14,6 +14,11 @@
 
 namespace flowscape {
 
+// meta.json's schema: 2 (flowscape 0.10) keeps only view records in "views" (their frames'
+// descriptions in "frames_of_reference") and has an "erp" record only where the release has the
+// ERP view; 1 (no "schema" key) is read too.
+inline constexpr int kMetaSchema = 2;
+
 struct SequenceMeta {
   std::string scene;  // map<MM>_seq<SS>
   int map = 0, sequence = 0;
@@ -22,8 +27,8 @@ struct SequenceMeta {
   nlohmann::json weather;  // weather/'s record; its "preset" names the base preset
   int frames = 0;
   double fps = kFrameRate;
-  int erp_height = 0;                                  // width 2 x height; ERP flow is 360-degree
-  double camera_height = 0;                            // of the rig above the ego vehicle's origin
+  int erp_height = 0;        // width 2 x height; ERP flow is 360-degree; 0: no ERP (another rig)
+  double camera_height = 0;  // of the rig above the ego vehicle's origin
   double camera_pitch_sway = 0, camera_roll_sway = 0;  // amplitudes in degrees (RigMount)
   std::vector<Pose> poses;  // per frame: rig (x forward, y left, z up) -> world
   nlohmann::json city;      // scenes/' scene record (null when there is none)
