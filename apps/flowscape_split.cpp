@@ -20,9 +20,29 @@ int main(int argc, char** argv) {
   bool no_panoflow = false;
   PanoflowOptions panoflow;
   std::string flow = "classic", sky = "invalid", occluded = "kept", pass = "clean";
+  std::string method = "stratified";
+  HashSplitOptions by_hash;
   app.add_option("release", release, "release folder (made by gen_flowscape)")->required();
   app.add_option("--seed", seed, "which sequences of each weather go to test");
   app.add_flag("--no-panoflow", no_panoflow, "only splits/, no panoflow/ tree");
+  app.add_option("--method", method,
+                 "stratified: the paper's test split, per weather (FlowScape: 14 of 64 sequences); "
+                 "hash: each sequence's side from a stable hash of its name and --seed, so a "
+                 "release that grows keeps every sequence where it was (--test-share, "
+                 "--val-share, --held-out-maps)")
+      ->check(CLI::IsMember({"stratified", "hash"}))
+      ->capture_default_str();
+  auto* test_share = app.add_option("--test-share", by_hash.test_share,
+                                    "hash: the share of sequences in test (on average)")
+                         ->check(CLI::Range(0.0, 1.0))
+                         ->capture_default_str();
+  auto* val_share = app.add_option("--val-share", by_hash.val_share,
+                                   "hash: the share in splits/val.txt (on average)")
+                        ->check(CLI::Range(0.0, 1.0))
+                        ->capture_default_str();
+  auto* held_out = app.add_option("--held-out-maps", by_hash.held_out_maps,
+                                  "hash: maps (0-7) whose sequences are all test")
+                       ->check(CLI::Range(0, 7));
   app.add_option("--flow", flow, "panoflow/ flow: classic (the public FlowScape's) or 360")
       ->check(CLI::IsMember({"classic", "360"}));
   app.add_option("--sky", sky,
@@ -39,8 +59,29 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   finish_options(app, "flowscape_split");
   if (const auto status = parse_options(app, argc, argv)) return *status;
+  if (method != "hash" && (test_share->count() || val_share->count() || held_out->count())) {
+    std::fprintf(diagnostics(),
+                 "flowscape_split: error: --test-share, --val-share and "
+                 "--held-out-maps belong to --method hash (see --help)\n");
+    return kUsageError;
+  }
+  if (by_hash.test_share + by_hash.val_share > 1) {
+    std::fprintf(diagnostics(),
+                 "flowscape_split: error: --test-share + --val-share is above 1 (see --help)\n");
+    return kUsageError;
+  }
   try {
-    const Split split = split_sequences(read_release_sequences(release), seed);
+    const std::vector<SequenceInfo> sequences = read_release_sequences(release);
+    write_all_split(release, sequences);
+    if (sequences.size() < 2) {
+      std::fprintf(diagnostics(),
+                   "flowscape_split: warning: %s: one sequence, so splits/all.txt only (train and "
+                   "test take whole sequences: they need two); FlowScape(root, \"all\") reads it\n",
+                   release.c_str());
+      return 0;
+    }
+    const Split split = method == "hash" ? split_by_hash(sequences, seed, by_hash)
+                                         : split_sequences(sequences, seed);
     write_split_files(release, split);
     panoflow = {flow == "classic" ? FlowMode::Classic : FlowMode::Wrap360, sky == "invalid",
                 occluded == "invalid", pass == "final"};
@@ -57,7 +98,9 @@ int main(int argc, char** argv) {
                      "flowscape_split: warning: panoflow/%s is empty (no sequence of that weather "
                      "in that split); the folder is there for the PanoFlow code\n",
                      folder.c_str());
-    for (const auto& [label, side] : {std::pair{"train", &split.train}, {"test", &split.test}}) {
+    for (const auto& [label, side] :
+         {std::pair{"train", &split.train}, {"test", &split.test}, {"val", &split.val}}) {
+      if (side->empty() && std::string(label) == "val") continue;
       std::map<std::string, int> per_weather;
       int pairs = 0;
       for (const SequenceInfo& s : *side) ++per_weather[s.weather], pairs += s.frames - 1;

@@ -110,8 +110,8 @@ class FlowScape:
     def __init__(self, root, split="train", weathers=None, flow_mode="360", exclude_sky=False,
                  extras=(), transform=None, as_tensors=True, exclude_poles=0.0, max_flow=None,
                  faces=None, outputs=(), camera=None, pass_name="clean"):
-        if split not in ("train", "test"):
-            raise ValueError(f"split must be 'train' or 'test', not {split!r}")
+        if split not in ("train", "test", "val", "all"):
+            raise ValueError(f"split must be 'train', 'test', 'val' or 'all', not {split!r}")
         if pass_name not in ("clean", "final"):
             raise ValueError(f"pass_name must be 'clean' or 'final', not {pass_name!r}")
         self.image_kind = "color" if pass_name == "clean" else "final"
@@ -186,6 +186,9 @@ class FlowScape:
                              f"{', '.join(layout.kinds)}; gen_flowscape --outputs makes more)")
         split_file = layout.split_file(split)
         if not os.path.isfile(split_file):
+            if os.path.isfile(layout.split_file("all")):
+                raise ValueError(f"{split_file}: missing: the release has one sequence, and train "
+                                 "and test take whole ones; split='all' reads its pairs")
             raise ValueError(f"{split_file}: missing (run flowscape_split on the release)")
         weather_of, items = {}, []
         for line in open(split_file):

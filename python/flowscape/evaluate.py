@@ -39,8 +39,19 @@ def evaluate_cyclic(model, img1, img2):
 
 def evaluate_by_weather(model, dataset, device="cpu", batch_size=4, cyclic=False):
     """EPE per weather and overall (pixel-weighted), like Table III. `dataset` must yield extras
-    with 'meta' (FlowScape(..., extras=('meta',)))."""
+    with 'meta' (FlowScape(..., extras=('meta',))). On a view that does not wrap round (cube faces,
+    pinholes, fisheyes: the dataset's `panorama` is False) cyclic evaluation and a model padding
+    circularly (RaftAdapter(panorama=True)) are refused before anything runs."""
     import torch
+    if not getattr(dataset, "panorama", True):
+        view = getattr(dataset, "faces", None) or getattr(dataset, "camera", None)
+        if cyclic:
+            raise ValueError(f"cyclic=True turns the image round, but the view {view!r} is not a "
+                             "panorama")
+        if getattr(model, "panorama", False) is True:
+            raise ValueError(f"the model pads by wrapping the image round (RaftAdapter("
+                             f"panorama=True)), but the view {view!r} is not a panorama: pass "
+                             "panorama=False")
     loader = torch.utils.data.DataLoader(dataset, batch_size=batch_size,
                                          collate_fn=lambda items: items)
     sums = {}

@@ -38,6 +38,9 @@ class RaftAdapter:
     multiple of 8, takes the last (full-resolution) prediction of a list or tuple, unpads.
 
         evaluate_by_weather(RaftAdapter(raft, iters=32), test_set)
+
+    panorama=False for views that do not wrap round (cube faces, pinholes, fisheyes: edges
+    replicated); evaluate_by_weather refuses panorama=True on such a dataset.
     """
 
     def __init__(self, model, iters=32, divisor=8, panorama=True, test_mode=True):

@@ -204,6 +204,8 @@ def test_bad_input_is_named(tmp_path, yaw_release):
     with pytest.raises(ValueError, match="splits/train.txt nor panoflow"):
         flowscape.FlowScape(tmp_path, "train")
     with pytest.raises(ValueError, match="split must be"):
+        flowscape.FlowScape(yaw_release, "validation")
+    with pytest.raises(ValueError, match="splits/val.txt: missing"):  # no hash split made
         flowscape.FlowScape(yaw_release, "val")
     bad = tmp_path / "cut.flo"
     bad.write_bytes((yaw_release / "sequences/map00_seq00/erp/flow/000000.flo").read_bytes()[:100])
@@ -640,3 +642,56 @@ def test_bad_roots_faces_and_missing_files_are_named_when_the_dataset_is_made(
     image.unlink()
     with pytest.raises(ValueError, match=f"{image}: missing"):
         flowscape.FlowScape(damaged, "train")
+
+
+def test_evaluation_refuses_to_wrap_a_fisheye_view_round(rig_releases):
+    """Issue 35, point 5: RaftAdapter's circular padding and evaluate_by_weather(cyclic=True) wrapped
+    fisheye and pinhole views round (the seam mid-image); now refused before anything runs, and
+    panorama=False evaluates them."""
+    test = flowscape.FlowScape(rig_releases["fisheye"], "test", camera="front", extras=("meta",))
+
+    class Zero(torch.nn.Module):
+        def forward(self, img1, img2, iters=1, test_mode=True):
+            return torch.zeros(img1.shape[0], 2, *img1.shape[2:])
+
+    with pytest.raises(ValueError, match="not a panorama"):
+        flowscape.evaluate_by_weather(flowscape.RaftAdapter(Zero()), test)
+    with pytest.raises(ValueError, match="cyclic=True turns the image round"):
+        flowscape.evaluate_by_weather(flowscape.RaftAdapter(Zero(), panorama=False), test, cyclic=True)
+    rows = flowscape.evaluate_by_weather(flowscape.RaftAdapter(Zero(), panorama=False), test)
+    assert rows["all"]["pixels"] > 0
+
+
+def test_a_one_sequence_release_splits_into_all_and_loads(tmp_path):
+    """Issue 35, point 6: flowscape_split refused a release of one sequence, and the plugin had no
+    split to read it with."""
+    root = tmp_path / "one"
+    subprocess.run([f"{BIN}/gen_flowscape", "--maps", "1", "--sequences-per-map", "1", "--frames",
+                    "3", "--resolution", "16", "--face-size", "8", "--spp", "1", "--vehicles", "4",
+                    "--pedestrians", "2", "--out", str(root)], check=True, capture_output=True)
+    done = subprocess.run([f"{BIN}/flowscape_split", str(root)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "splits/all.txt only" in done.stderr
+    assert (root / "splits" / "all.txt").read_text().split("\n")[:2] == ["map00_seq00 000000",
+                                                                         "map00_seq00 000001"]
+    assert len(flowscape.FlowScape(root, "all")) == 2
+    with pytest.raises(ValueError, match="split='all' reads its pairs"):
+        flowscape.FlowScape(root, "train")
+
+
+def test_a_hash_split_with_a_validation_side_loads(tiny_release, tmp_path):
+    """Issue 35, point 6: no validation split, no split that survives a growing release."""
+    import shutil
+    root = tmp_path / "hashed"
+    shutil.copytree(tiny_release, root, symlinks=True)
+    done = subprocess.run([f"{BIN}/flowscape_split", str(root), "--method", "hash", "--test-share",
+                           "0.3", "--val-share", "0.4", "--seed", "1", "--no-panoflow"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    sides = {name: {line.split()[0] for line in (root / "splits" / f"{name}.txt").read_text().split("\n")
+                    if line} for name in ("train", "test", "val")}
+    assert sides["val"] and not (sides["val"] & (sides["train"] | sides["test"]))
+    assert len(flowscape.FlowScape(root, "val")) == 2 * len(sides["val"])  # 3 frames: 2 pairs
+    wrong = subprocess.run([f"{BIN}/flowscape_split", str(root), "--val-share", "0.4"],
+                           capture_output=True, text=True)
+    assert wrong.returncode == 2 and "belong to --method hash" in wrong.stderr

@@ -104,10 +104,42 @@ Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t 
   return split;
 }
 
+void write_all_split(const fs::path& release, const std::vector<SequenceInfo>& sequences) {
+  remove_temporary_files(split_file(release, "all").parent_path());
+  write_text(split_file(release, "all"), pair_lines(sequences));
+}
+
 void write_split_files(const fs::path& release, const Split& split) {
   remove_temporary_files(split_file(release, "train").parent_path());
   write_text(split_file(release, "train"), pair_lines(split.train));
   write_text(split_file(release, "test"), pair_lines(split.test));
+  if (split.val.empty())
+    fs::remove(split_file(release, "val"));
+  else
+    write_text(split_file(release, "val"), pair_lines(split.val));
+}
+
+double split_hash(const std::string& name, std::uint64_t seed) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a
+  for (const char c : name) h = (h ^ std::uint8_t(c)) * 0x100000001b3ull;
+  return double(mix_bits(h ^ mix_bits(seed)) >> 11) * 0x1.0p-53;
+}
+
+Split split_by_hash(const std::vector<SequenceInfo>& sequences, std::uint64_t seed,
+                    const HashSplitOptions& options) {
+  Split split;
+  for (const SequenceInfo& s : sequences) {
+    const bool held_out =  // the name starts "mapMM_" of a held-out map
+        std::any_of(options.held_out_maps.begin(), options.held_out_maps.end(), [&](int map) {
+          return s.name.starts_with(sequence_name(map, 0).substr(0, 6));
+        });
+    const double u = split_hash(s.name, seed);
+    (held_out || u < options.test_share           ? split.test
+     : u < options.test_share + options.val_share ? split.val
+                                                  : split.train)
+        .push_back(s);
+  }
+  return split;
 }
 
 namespace {

@@ -21,7 +21,7 @@ struct SequenceInfo {
 std::vector<SequenceInfo> read_release_sequences(const std::filesystem::path& release);
 
 struct Split {
-  std::vector<SequenceInfo> train, test;
+  std::vector<SequenceInfo> train, test, val;  // val: only from split_by_hash
 };
 // Per weather, round(n * share) sequences go to test (share 0.2 for sunny, 0.25 for the others),
 // at least one and never all when there are two or more; which ones is decided by the seed. When
@@ -29,8 +29,25 @@ struct Split {
 // side is ever empty; fewer than 2 sequences is an error.
 Split split_sequences(const std::vector<SequenceInfo>& sequences, std::uint64_t seed);
 
-// splits/train.txt and splits/test.txt: one flow pair per line, "<scene> <frame>".
+// A split that stays as it is when a release grows: each sequence's side comes from a stable hash
+// of its name and the seed alone (u in [0, 1): test below test_share, val below test_share +
+// val_share, else train), and every sequence of a held-out map (0-7) is test. Not stratified: the
+// shares hold on average.
+struct HashSplitOptions {
+  double test_share = 0.2, val_share = 0;
+  std::vector<int> held_out_maps{};
+};
+Split split_by_hash(const std::vector<SequenceInfo>& sequences, std::uint64_t seed,
+                    const HashSplitOptions& options);
+// The hash's value for a sequence name in [0, 1) (FNV-1a of the name, mixed with the seed).
+double split_hash(const std::string& name, std::uint64_t seed);
+
+// splits/train.txt and splits/test.txt (and val.txt when the split has one; a stale one is
+// removed): one flow pair per line, "<scene> <frame>".
 void write_split_files(const std::filesystem::path& release, const Split& split);
+// splits/all.txt: every pair of every sequence (a release of one sequence has only this split).
+void write_all_split(const std::filesystem::path& release,
+                     const std::vector<SequenceInfo>& sequences);
 // How the tree stores flow. The defaults are the public FlowScape's conventions (docs/release.md):
 // classic ERP flow, and the sky marked unknown so the public loader's |u|, |v| < 1000 mask drops
 // it.
