@@ -311,3 +311,23 @@ TEST_CASE("drops on a real lens: final shows them, lens_mask marks them, the gro
   CHECK(file_bytes(wet / file("lens_mask", 1)) == file_bytes(wet / file("lens_mask", 0)));
   CHECK(read_meta(wet).final.at("lens_drops") == 30);
 }
+
+TEST_CASE("a release grows by maps: the sequences it had keep their bytes") {
+  // issue 35, point 6: more sequences needed --force and a full re-render
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(1, 2);
+  config.sequences_per_map = 2, config.spp = 1;
+  write_release(config, dir.path, false);
+  const fs::path first = sequence_dir(dir.path, "map00_seq01");
+  std::map<fs::path, std::string> before;
+  for (const auto& entry : fs::recursive_directory_iterator(first))
+    if (entry.is_regular_file()) before[entry.path()] = file_bytes(entry.path());
+  config.maps = 2;
+  write_release(config, dir.path, false);  // no --force: it only adds map 1
+  for (const auto& [path, bytes] : before) CHECK(file_bytes(path) == bytes);
+  CHECK(fs::exists(sequence_dir(dir.path, "map01_seq01") / "meta.json"));
+  CHECK(read_json(dir.path / "config.json")["maps"] == 2);
+  config.maps = 1;  // shrinking is another release
+  CHECK_THROWS_WITH(write_release(config, dir.path, false),
+                    Catch::Contains("this release was made with another config"));
+}

@@ -374,9 +374,25 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   write_meta(dir, meta);
 }
 
+// Whether `now` only adds maps at the end of the release `recorded` describes: sequences are
+// numbered map by map and their weather, time of day, sky and route follow that number, so the
+// sequences already made stay exactly as they are.
+bool grows_by_maps(const nlohmann::json& recorded, const nlohmann::json& now) {
+  if (recorded.is_null() || !recorded.contains("maps") || now.at("maps") <= recorded.at("maps"))
+    return false;
+  nlohmann::json same = recorded;
+  same["maps"] = now.at("maps");
+  return same == now && now.value("map_list", nlohmann::json::array()).empty();
+}
+
 void claim_release(const ReleaseConfig& config, const fs::path& out, bool force) {
   const nlohmann::json now = to_json(config), recorded = recorded_config(out);
-  if (!recorded.is_null() && recorded != now) {
+  if (config.shards == 1 && grows_by_maps(recorded, now)) {
+    std::fprintf(diagnostics(),
+                 "gen_flowscape: %s: the release grows from %d to %d maps; its "
+                 "sequences stay as they are\n",
+                 out.string().c_str(), recorded.at("maps").get<int>(), config.maps);
+  } else if (!recorded.is_null() && recorded != now) {
     if (!force) {
       if (config.shards > 1) write_refused_shard(out, config);
       throw FileError(out / (fs::exists(out / kConfigFile) ? kConfigFile : kManifestFile),
