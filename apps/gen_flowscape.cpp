@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "cli.h"
@@ -29,30 +30,36 @@ std::vector<std::string> comma_list(const std::string& text) {
   return items;
 }
 
+// The whole number `text` is, all of it; nullopt for anything else (empty text too).
+std::optional<int> whole_number(const std::string& text) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
+  return value;
+}
+
 // "1,2,4" -> {1, 2, 4}; other text is an option error.
 std::vector<int> parse_gaps(const std::string& text) {
   std::vector<int> gaps;
   for (const std::string& item : comma_list(text)) {
-    int gap = 0;
-    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), gap);
-    if (error != std::errc() || end != item.data() + item.size() || item.empty())
+    const std::optional<int> gap = whole_number(item);
+    if (!gap)
       throw std::invalid_argument(
           "--flow-gaps wants whole numbers separated by commas, e.g. 1,2,4 "
           "(got \"" +
           text + "\")");
-    gaps.push_back(gap);
+    gaps.push_back(*gap);
   }
   return gaps;
 }
 
 // A whole number >= 0 of an option, else a usage error naming it.
 int parse_count(const std::string& text, const char* option) {
-  int value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value < 0)
+  const std::optional<int> value = whole_number(text);
+  if (!value || *value < 0)
     throw CLI::ValidationError(std::string(option) + ": \"" + text +
                                "\" is not a whole number >= 0");
-  return value;
+  return *value;
 }
 
 // Options a rig other than the flowscape one cannot use: a usage error, not silently ignored.

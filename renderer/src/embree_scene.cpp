@@ -214,7 +214,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
       rtcRetainScene(bvh);
     bvhs_.push_back(bvh);
   }
-  now_ = posed_scene(int(Build::Posed));
+  now_ = posed_scene(false);
   use(now_);
 }
 
@@ -233,7 +233,7 @@ void EmbreeScene::release(PosedScene& scene) {
 }
 
 // A top-level scene instancing every BVH (skinned parts: BVHs of its own, posed with it).
-EmbreeScene::PosedScene EmbreeScene::posed_scene(int skinned_build) {
+EmbreeScene::PosedScene EmbreeScene::posed_scene(bool refit_skinned) {
   PosedScene posed;
   posed.top = rtcNewScene(device_);
   for (unsigned k = 0; k < skinned_.size(); ++k) {
@@ -242,7 +242,7 @@ EmbreeScene::PosedScene EmbreeScene::posed_scene(int skinned_build) {
                                      [&](const MaskedMesh& m) { return m.ref == &ref; });
     Deformed d{*ref.rest};
     d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked,
-                      Build(skinned_build), &d.geometry);
+                      refit_skinned ? Build::Refit : Build::Posed, &d.geometry);
     posed.deformed.push_back(std::move(d));
   }
   for (unsigned m = 0; m < meshes_.size(); ++m) {
@@ -297,7 +297,7 @@ void EmbreeScene::use(const PosedScene& scene) {
 }
 
 void EmbreeScene::set_line_time(double t) {
-  if (!lines_.top) lines_ = posed_scene(int(Build::Refit));
+  if (!lines_.top) lines_ = posed_scene(true);
   pose(lines_, t);
   use(lines_);
 }
@@ -305,7 +305,7 @@ void EmbreeScene::set_line_time(double t) {
 void EmbreeScene::set_times(double now, const std::vector<double>& targets) {
   pose(now_, now);
   use(now_);
-  while (targets_.size() < targets.size()) targets_.push_back(posed_scene(int(Build::Posed)));
+  while (targets_.size() < targets.size()) targets_.push_back(posed_scene(false));
   for (std::size_t k = 0; k < targets.size(); ++k) pose(targets_[k], targets[k]);
 }
 

@@ -141,7 +141,7 @@ class EmbreeScene {
     double time = 0;
     bool posed = false;
   };
-  PosedScene posed_scene(int skinned_build);     // a Build of embree_scene.cpp
+  PosedScene posed_scene(bool refit_skinned);    // the line scene's skinned BVHs refit
   void use(const PosedScene& scene);             // `now` is `scene`'s
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
   void release(PosedScene& scene);

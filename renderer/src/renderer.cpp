@@ -1,6 +1,5 @@
 #include "flowscape/renderer/renderer.h"
 
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -74,18 +73,14 @@ Image<float> Renderer::depth(const Projection& projection, double time, const Ca
   for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
     pose_line(impl_->embree, readout, t);
     const Pose pose = camera(t);
-    const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
-    tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
-      for (int y = block.rows().begin(); y < block.rows().end(); ++y)
-        for (int x = block.cols().begin(); x < block.cols().end(); ++x) {
-          const Vec3 ray = projection.ray(Vec2(x + 0.5, y + 0.5));
-          *depth.pixel(x, y) =
-              ray.isZero()
-                  ? std::numeric_limits<float>::quiet_NaN()
-                  : float(impl_->embree
-                              .intersect(pose.translation(), (pose.linear() * ray).normalized())
-                              .distance);
-        }
+    parallel_pixels(window, [&](int x, int y) {
+      const Vec3 ray = projection.ray(Vec2(x + 0.5, y + 0.5));
+      *depth.pixel(x, y) =
+          ray.isZero()
+              ? std::numeric_limits<float>::quiet_NaN()
+              : float(
+                    impl_->embree.intersect(pose.translation(), (pose.linear() * ray).normalized())
+                        .distance);
     });
   });
   return depth;

@@ -202,10 +202,8 @@ GroundTruth rolling_ground_truth(EmbreeScene& scene, const ImageTextures& images
                   scene.set_line_time(t);
                   const Pose pose = request.track(t);
                   const CameraAt camera = camera_at(pose, projection);
-                  tbb::parallel_for(window.y0, window.y1, [&](int y) {
-                    tbb::parallel_for(window.x0, window.x1, [&](int x) {
-                      trace_pixel(c, images, camera, pose, x, y, out, visibility);
-                    });
+                  parallel_pixels(window, [&](int x, int y) {
+                    trace_pixel(c, images, camera, pose, x, y, out, visibility);
                   });
                 });
   test_visibility(scene, c, 0, visibility[0], out.valid);

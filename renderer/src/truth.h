@@ -1,6 +1,9 @@
 #pragma once
 // Internal: writing one pixel's ground truth, shared by the global shutter (renderer.cpp) and the
 // rolling shutter (rolling_truth.cpp).
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
 #include <limits>
 
 #include "embree_scene.h"
@@ -38,6 +41,17 @@ void put_surface(const EmbreeScene& scene, const Hit& hit, GroundTruth& out, int
 void put_normals(const EmbreeScene& scene, const ImageTextures& images,
                  const Projection& projection, const TruthRequest& request, const CameraAt& camera,
                  const Hit& hit, const Vec3& direction, Vec2 pixel, GroundTruth& out, int x, int y);
+
+// visit(x, y) for every pixel of the window, in parallel over 2-D blocks (a rolling shutter's
+// window is a single line).
+template <class Visit>
+void parallel_pixels(const PixelWindow& window, Visit&& visit) {
+  const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
+  tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
+    for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+      for (int x = block.cols().begin(); x < block.cols().end(); ++x) visit(x, y);
+  });
+}
 
 // Poses the scene for the line captured at t: set_times for a global shutter (the frame),
 // set_line_time for a rolling one.
