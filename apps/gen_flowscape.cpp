@@ -17,6 +17,7 @@
 #include "flowscape/release/meta.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/release/writer.h"
+#include "flowscape/renderer/calibration_file.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;
@@ -36,6 +37,21 @@ std::optional<int> whole_number(const std::string& text) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
   return value;
+}
+
+// "1.5,0,-0.3,0,-10,0" -> the six numbers of --rig-mount; other text is a usage error.
+std::vector<double> parse_mount(const std::string& text) {
+  std::vector<double> numbers;
+  for (const std::string& item : comma_list(text)) {
+    double value = 0;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), value);
+    if (error != std::errc() || end != item.data() + item.size() || item.empty()) break;
+    numbers.push_back(value);
+  }
+  if (numbers.size() != 6 || comma_list(text).size() != 6)
+    throw CLI::ValidationError("--rig-mount wants x,y,z,yaw,pitch,roll: six numbers (got \"" +
+                               text + "\")");
+  return numbers;
 }
 
 // "1,2,4" -> {1, 2, 4}; other text is an option error.
@@ -69,9 +85,10 @@ void refuse_rig_options(const nlohmann::json& given, const std::string& rig) {
     throw std::invalid_argument(
         std::string(given.contains("face_size") ? "--face-size" : "--no-cube") +
         ": only the flowscape rig has cube faces (the rig is \"" + rig + "\")");
-  if (rig.ends_with(".json") && given.contains("resolution"))
-    throw std::invalid_argument("--resolution: the rig file " + rig +
-                                " sets its cameras' image sizes (their \"parameters\")");
+  const bool file = rig.ends_with(".json") || is_calibration_file(rig);
+  if (file && given.contains("resolution"))
+    throw std::invalid_argument("--resolution: " + rig +
+                                " sets its cameras' image sizes (--scale scales them)");
 }
 
 }  // namespace
@@ -200,6 +217,18 @@ int main(int argc, char** argv) {
   option("--rig", "rig", defaults.rig,
          "the cameras: flowscape (the ERP and six cube faces), fisheye, woodscape, pal, "
          "dual-fisheye, or a rig file (.json, docs/cameras.md)");
+  auto* rig_from = app.add_option_function<std::string>(
+      "--rig-from", [&given](const std::string& file) { given["rig"] = file; },
+      "a calibration as the rig: OpenCV's (cv::FileStorage .yaml/.xml) or Kalibr's camchain "
+      "(.yaml); its first camera placed by --rig-mount (docs/cameras.md)");
+  rig_from->excludes(app.get_option("--rig"));
+  app.add_option_function<std::string>(
+      "--rig-mount", [&given](const std::string& text) { given["rig_mount"] = parse_mount(text); },
+      "X,Y,Z,YAW,PITCH,ROLL: the calibration's first camera on the rig (metres: x forward, y "
+      "left, z up; degrees as a rig file's yaw_pitch_roll_degrees)");
+  option("--scale", "scale", defaults.scale,
+         "scale a rig file's or calibration's image sizes and intrinsics (0.25: a quick preview; "
+         "K as docs/cameras.md says)");
   option("--actors", "actors", defaults.actors,
          "detailed: the built-in vehicle families and people, parked vehicles as actors, the ego "
          "vehicle drawn; legacy: flowscape 0.9's box models (reproduces its releases)");

@@ -65,7 +65,21 @@ cat >"$work/rig.json" <<'JSON'
   "parameters": {"width": 32, "height": 24, "K": [[16, 0, 15.5], [0, 16, 11.5], [0, 0, 1]]},
   "mount": {"position": [0, 0, 0], "yaw_pitch_roll_degrees": [0, 0, 0]}}]}
 JSON
-check "gen_flowscape: --resolution with a rig file" fails_clearly "--resolution: the rig file" "$bin/gen_flowscape" --rig "$work/rig.json" --resolution 64 --check --out "$work/m"
+check "gen_flowscape: --resolution with a rig file" fails_clearly "sets its cameras' image sizes (--scale scales them)" "$bin/gen_flowscape" --rig "$work/rig.json" --resolution 64 --check --out "$work/m"
+# a calibration as the rig (--rig-from): its mount asked for, then rendered small with --scale
+camchain="$(dirname "$0")/../docs/rigs/kalibr_stereo.yaml"  # Kalibr's camchain, as docs/cameras.md shows
+check "gen_flowscape --rig-from: a calibration's mount is asked for" fails_clearly "kalibr_stereo.yaml: a calibration has no place on the vehicle: give the first camera's mount with --rig-mount" "$bin/gen_flowscape" --rig-from "$camchain" --check --out "$work/m"
+check "gen_flowscape --rig-mount: six numbers" fails_clearly "--rig-mount wants x,y,z,yaw,pitch,roll" "$bin/gen_flowscape" --rig-from "$camchain" --rig-mount 1,2,3 --check --out "$work/m"
+check "gen_flowscape --scale: not for presets" fails_clearly "scale is for a rig file or calibration: the fisheye rig is sized by resolution" "$bin/gen_flowscape" --rig fisheye --scale 0.5 --check --out "$work/m"
+check "gen_flowscape --rig-from renders a calibration, scaled" "$bin/gen_flowscape" --rig-from "$camchain" --rig-mount 0.5,0,0.3,0,-5,0 --scale 0.0625 --maps 0, --sequences-per-map 1 --frames 2 --spp 1 --outputs none --out "$work/calib"
+meta=$(ls "$work"/calib/sequences/*/meta.json | head -1)
+check "its meta.json holds cam1 at 47 x 30 with K scaled (fx 457.587 x 47/752)" /usr/bin/python3 -c "
+import json, sys
+v = json.load(open('$meta'))['views']['cameras/cam1']
+K = v['parameters']['K']
+assert (v['width'], v['height']) == (47, 30), (v['width'], v['height'])
+assert abs(K[0][0] - 457.587 * 47 / 752) < 1e-9 and abs(K[0][2] - ((379.999 + 0.5) * 47 / 752 - 0.5)) < 1e-9, K
+"
 touch "$work/a_file"
 check "gen_flowscape --check: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --frames 2 --check --out "$work/a_file"
 check "gen_flowscape: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 32 --face-size 16 --spp 1 --out "$work/a_file"

@@ -7,13 +7,13 @@ __version__ = "0.10.0"  # the toolkit's (CMakeLists.txt project version, pyproje
 from .io import read_flo, write_flo, read_image, native_available
 from .dataset import FlowScape, Concat, pole_mask
 from .layout import ReleaseLayout
-from .cameras import camera_model, camera_poses
+from .cameras import camera_model, camera_poses, crop_view, scale_view
 from .augment import (fda_r, fda_e, cyclic_crop, crop, scale, flip, horizontal_shift,
                       photometric_jitter, Augmentation)
 from .evaluate import epe_stats, evaluate_by_weather, evaluate_cyclic
 from .raft import RaftAdapter, InputPadder
 
-__all__ = ["FlowScape", "Concat", "pole_mask", "ReleaseLayout", "camera_model", "camera_poses", "read_flo", "write_flo", "read_image",
+__all__ = ["FlowScape", "Concat", "pole_mask", "ReleaseLayout", "camera_model", "camera_poses", "crop_view", "scale_view", "read_flo", "write_flo", "read_image",
            "native_available", "fda_r", "fda_e", "cyclic_crop", "crop", "scale", "flip",
            "horizontal_shift", "photometric_jitter", "Augmentation", "epe_stats",
            "evaluate_by_weather", "evaluate_cyclic", "RaftAdapter", "InputPadder"]

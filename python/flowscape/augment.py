@@ -6,11 +6,13 @@ shifts for ERP (exact for 360-degree flow); photometric jitter.
 Samples are dicts of numpy arrays: 'img1', 'img2' (H x W x 3 float32), 'flow' (H x W x 2),
 'valid' (H x W float32), optionally 'semantic'. Sampling is bilinear at 1/32-pixel steps (as
 OpenCV's remap, which the C++ extension uses; the numpy fallback does the same arithmetic)."""
+import json
 import math
 
 import numpy as np
 
 from . import io as _io
+from .cameras import crop_view, scale_view
 
 
 def remap(image, map_x, map_y, wrap=False):
@@ -93,6 +95,7 @@ def radial_inverse(xd, yd, xc, yc, k2, k4):
 def fda_r(sample, rng, k2=None, k4=None):
     """Radial flow distortion (FDA-R): barrel or pincushion about the image centre,
     k2 ~ U(-1e-6, 1e-6), k4 ~ U(-1e-14, 1e-14) unless given."""
+    _refuse_calibration(sample, "a radially distorted image")
     h, w = sample["flow"].shape[:2]
     k2 = rng.uniform(-1e-6, 1e-6) if k2 is None else k2
     k4 = rng.uniform(-1e-14, 1e-14) if k4 is None else k4
@@ -159,14 +162,29 @@ def cyclic_crop(sample, height, width, rng):
             for k, v in sample.items()}
 
 
+def _refuse_calibration(sample, what):
+    if "calibration" in sample:
+        raise ValueError(f"{what} has no camera of the view's model: leave it out with "
+                         "extras=('calibration',)")
+
+
+def _with_calibration(out, sample, change, *arguments):
+    """`out` with the sample's camera record (extras 'calibration': meta.json's view as JSON)
+    changed as its image was (cameras.crop_view, scale_view)."""
+    if "calibration" in sample:
+        out["calibration"] = json.dumps(change(json.loads(sample["calibration"]), *arguments))
+    return out
+
+
 def crop(sample, height, width, rng):
     """A height x width crop inside the image (pinhole views: no wrapping)."""
     h, w = sample["flow"].shape[:2]
     if height > h or width > w:
         raise ValueError(f"crop {height}x{width} is larger than the {h}x{w} sample")
     y0, x0 = int(rng.integers(0, h - height + 1)), int(rng.integers(0, w - width + 1))
-    return {k: (v[y0:y0 + height, x0:x0 + width] if isinstance(v, np.ndarray) else v)
-            for k, v in sample.items()}
+    out = {k: (v[y0:y0 + height, x0:x0 + width] if isinstance(v, np.ndarray) else v)
+           for k, v in sample.items()}
+    return _with_calibration(out, sample, crop_view, x0, y0, width, height)
 
 
 def scale(sample, scale_x, scale_y):
@@ -182,13 +200,14 @@ def scale(sample, scale_x, scale_y):
     map_y = np.clip((ys + 0.5) / sy - 0.5, 0, h - 1)
     out = _resample(sample, map_x, map_y, np.ones((new_h, new_w), bool),
                     remap(sample["flow"], map_x, map_y) * np.float32([sx, sy]))
-    return out
+    return _with_calibration(out, sample, scale_view, new_w, new_h)
 
 
 def flip(sample, horizontal=True):
     """The sample mirrored left-right (u negated) or upside down (v negated): x -> W - 1 - x takes
     a target x + u to (W - 1 - x) - u, so the mirrored field is exact. Right for 360-degree ERP
     flow too (a mirrored sphere)."""
+    _refuse_calibration(sample, "a mirrored image")
     axis, component = (1, 0) if horizontal else (0, 1)
     out = {k: (np.ascontiguousarray(np.flip(v, axis)) if isinstance(v, np.ndarray) else v)
            for k, v in sample.items()}

@@ -5,7 +5,11 @@ and unproject (pixels -> unit rays), read from a view of meta.json (`camera_mode
 Conventions: camera frame x right, y down, z forward; continuous pixel coordinates with pixel
 (i, j)'s centre at (i + 0.5, j + 0.5); K and the PAL centre as OpenCV / OCamCalib write them (the
 top-left pixel's centre at (0, 0)). Both functions return (values, valid): valid is False where
-the model sees nothing (outside the image circle or annulus, beyond the field of view)."""
+the model sees nothing (outside the image circle or annulus, beyond the field of view).
+crop_view and scale_view give the record of a cropped or resized image (what Augmentation does
+to a sample's 'calibration')."""
+import copy
+
 import numpy as np
 
 
@@ -290,3 +294,76 @@ def camera_model(view):
 def camera_poses(view):
     """The view's camera -> world poses per frame, 4 x 4 (meta.json: 3 x 4 row-major)."""
     return [np.vstack([np.asarray(pose, float).reshape(3, 4), [0, 0, 0, 1]]) for pose in view["poses"]]
+
+
+def _with_parameters(view, width, height, change):
+    """A copy of the view record with the image size and `change(parameters)` applied."""
+    out = copy.deepcopy(view)
+    p = out.setdefault("parameters", out)
+    change(p)
+    p["width"], p["height"] = width, height
+    out["width"], out["height"] = width, height
+    out.pop("poses", None)
+    return out
+
+
+def crop_view(view, x0, y0, width, height):
+    """The view record (meta.json's: model, parameters, width, height) of its image cropped to the
+    width x height window whose top-left pixel is (x0, y0): every direction is seen at its old
+    position minus (x0, y0). K's centre (OpenCV's convention, as meta.json states it) and the PAL's
+    centre move by the window's corner, WoodScape's centre offset by the old centre's move against
+    the new image centre; a dual fisheye's and a panorama's image has no cropped form (ValueError)."""
+    model = view["model"]
+    if model in ("dual_fisheye", "equirectangular"):
+        raise ValueError(f"a crop of a {model} image is not a {model} image")
+
+    def change(p):
+        if "K" in p:
+            K = np.asarray(p["K"], float)
+            K[0, 2] -= x0
+            K[1, 2] -= y0
+            p["K"] = K.tolist()
+        if model == "woodscape":  # centre = size / 2 + offset
+            p["cx_offset"] = p.get("cx_offset", 0.0) + view["width"] / 2 - x0 - width / 2
+            p["cy_offset"] = p.get("cy_offset", 0.0) + view["height"] / 2 - y0 - height / 2
+        if model == "panoramic_annular":
+            p["centre"] = [p["centre"][0] - x0, p["centre"][1] - y0]
+    return _with_parameters(view, width, height, change)
+
+
+def scale_view(view, width, height):
+    """The view record for its image resized to width x height (as augment.scale resizes it: a
+    point at continuous x lands at x * sx, sx = width / old width): every direction is seen at
+    (sx u, sy v). The rules of docs/cameras.md "Scaling a camera" (renderer/lens.h scaled_lens):
+    fx' = sx fx, cx' = sx (cx + 0.5) - 0.5; WoodScape's k by sx and aspect by sy / sx; the PAL's
+    affine first row by sx / sy and a_i by sy^(1 - i); a dual fisheye only with sx = sy."""
+    model = view["model"]
+    sx, sy = width / view["width"], height / view["height"]
+    if model == "equirectangular":
+        raise ValueError("a resized panorama is described by its new size alone")
+
+    def change(p):
+        if "K" in p:
+            K = np.asarray(p["K"], float)
+            K[0, 0], K[1, 1] = K[0, 0] * sx, K[1, 1] * sy
+            K[0, 2], K[1, 2] = (K[0, 2] + 0.5) * sx - 0.5, (K[1, 2] + 0.5) * sy - 0.5
+            p["K"] = K.tolist()
+        if model == "woodscape":
+            p["k"] = [k * sx for k in p["k"]]
+            p["aspect_ratio"] = p.get("aspect_ratio", 1.0) * sy / sx
+            p["cx_offset"], p["cy_offset"] = p.get("cx_offset", 0.0) * sx, p.get("cy_offset", 0.0) * sy
+        if model == "dual_fisheye":
+            if abs(sx - sy) > 1e-12:
+                raise ValueError("a dual fisheye scales by one factor (its width stays twice its height)")
+            p["f"] = p["f"] * sy
+        if model == "panoramic_annular":
+            c, d, e = p.get("affine", [1.0, 0.0, 0.0])
+            p["affine"] = [c * sx / sy, d * sx / sy, e]
+            p["centre"] = [(p["centre"][0] + 0.5) * sx - 0.5, (p["centre"][1] + 0.5) * sy - 0.5]
+            p["polynomial"] = [a * sy ** (1 - i) for i, a in enumerate(p["polynomial"])]
+    return _with_parameters(view, width, height, change)
+
+
+def camera_record(view):
+    """The view record without its per-frame poses (what a sample's 'calibration' holds)."""
+    return {k: v for k, v in view.items() if k != "poses"}

@@ -2,11 +2,13 @@
 (its splits over its sequences, found through the layout in manifest.json) or from the PanoFlow
 tree (panoflow/<split>/<weather>/...)."""
 import copy
+import json
 import os
 
 import numpy as np
 
 from .io import read_flo, read_image, UNKNOWN_FLOW
+from .cameras import camera_record
 from .layout import ReleaseLayout
 
 SKY = 13
@@ -76,7 +78,10 @@ class FlowScape:
     Each item is (img1, img2, flow, valid) as RAFT-style loops take them: float32 tensors
     3 x H x W (0-255), 3 x H x W, 2 x H x W (pixels) and H x W (1.0 where the flow is usable).
     With `extras`, a fifth element is a dict holding what was asked: 'semantic' (H x W int64,
-    FlowScape layout only), 'meta' (scene, frame, weather, map).
+    FlowScape layout only), 'meta' (scene, frame, weather, map), 'calibration' (a camera's or cube
+    face's record from meta.json as JSON text, without poses: flowscape.camera_model(json.loads(
+    ...)) projects with it; Augmentation's crops and scales keep it true for the image they make,
+    flips and FDA refuse it; not for panoramas).
 
     outputs: more output kinds of the release to put in the extras dict under their names (numpy
     H x W x C before tensors, C x H x W tensors after): 'flow_backward' and 'valid_backward' (read
@@ -142,6 +147,8 @@ class FlowScape:
             raise ValueError(f"{self.root}: the final pass needs the release layout")
         if self.outputs and self.layout != "flowscape":
             raise ValueError(f"{self.root}: outputs need the release layout")
+        if "calibration" in self.extras and self.layout != "flowscape":
+            raise ValueError(f"{self.root}: calibration needs the release layout")
         if (exclude_sky or "semantic" in self.extras) and self.layout != "flowscape":
             raise ValueError(f"{self.root}: semantics (exclude_sky) need the release layout, "
                              "the PanoFlow tree has none")
@@ -177,6 +184,9 @@ class FlowScape:
             raise ValueError(f"{self.root}: no camera {self.camera!r} (the rig has "
                              f"{', '.join(layout.cameras) or 'the ERP and the cube only'})")
         self.panorama = self.faces is None and layout.is_panorama(self.camera)
+        if "calibration" in self.extras and self.panorama:
+            raise ValueError(f"{self.root}: extras 'calibration' is for cameras and cube faces; a "
+                             "panorama's crops and shifts are not a camera of its model")
         if self.image_kind not in layout.kinds:
             raise ValueError(f"{self.root}: the release has no final pass (gen_flowscape "
                              "--outputs final makes it)")
@@ -190,7 +200,7 @@ class FlowScape:
                 raise ValueError(f"{split_file}: missing: the release has one sequence, and train "
                                  "and test take whole ones; split='all' reads its pairs")
             raise ValueError(f"{split_file}: missing (run flowscape_split on the release)")
-        weather_of, items = {}, []
+        weather_of, views_of, items = {}, {}, []
         for line in open(split_file):
             if not line.strip():
                 continue
@@ -199,6 +209,7 @@ class FlowScape:
             if scene not in weather_of:
                 meta = layout.meta(scene)
                 weather_of[scene] = (meta["weather"]["preset"], meta["map_name"], meta["frames"])
+                views_of[scene] = meta.get("views", {})
             weather, map_name, frames = weather_of[scene]
             at = {kind: frame + 1 if layout.step(kind) < 0 else frame for kind in self.outputs}
             if any(not layout.has_frame(kind, at[kind], frames) for kind in self.outputs):
@@ -218,6 +229,9 @@ class FlowScape:
                                 meta={"scene": scene, "frame": frame, "weather": weather,
                                       "map": map_name, "face": face or "",
                                       "camera": self.camera or ""})
+                    if "calibration" in self.extras:
+                        view = f"cameras/{self.camera}" if self.camera else f"cube/{face}"
+                        item["calibration"] = json.dumps(camera_record(views_of[scene][view]))
                     items.append(item)
         return items
 
@@ -285,6 +299,8 @@ class FlowScape:
             if self.exclude_sky:
                 sample["valid"] *= (semantic != self.sky)
             sample["semantic"] = semantic
+        if "calibration" in self.extras:
+            sample["calibration"] = item["calibration"]
         return sample
 
     def __getitem__(self, index):
@@ -307,6 +323,7 @@ class FlowScape:
                                            else value[..., 0].copy())
         if "semantic" in self.extras:
             extra["semantic"] = torch.from_numpy(sample["semantic"])
-        if "meta" in self.extras:
-            extra["meta"] = sample["meta"]
+        for key in ("meta", "calibration"):
+            if key in self.extras:
+                extra[key] = sample[key]
         return out + (extra,)

@@ -190,6 +190,27 @@ Rig rig_from_json(const nlohmann::json& json) {
   return rig;
 }
 
+Rig scaled_rig(const Rig& rig, double scale) {
+  Rig scaled = rig;
+  for (RigCamera& camera : scaled.cameras) {
+    const Mat3 rotation = camera.projection.rotation;
+    if (camera.projection.kind == Projection::Kind::Equirectangular) {
+      const int height = int(std::lround(camera.projection.height * scale));
+      require(height >= 2, "camera \"" + camera.name + "\": a scale of " + std::to_string(scale) +
+                               " leaves its panorama under 2 pixels high");
+      camera.projection = Projection::equirectangular(height);
+    } else {
+      try {
+        camera.projection =
+            Projection::of_lens(scaled_lens(*camera.projection.lens, scale), rotation);
+      } catch (const std::invalid_argument& e) {
+        require(false, "camera \"" + camera.name + "\": " + e.what());
+      }
+    }
+  }
+  return scaled;
+}
+
 nlohmann::json to_json(const Rig& rig) {
   nlohmann::json cameras = nlohmann::json::array();
   for (const RigCamera& c : rig.cameras) {

@@ -221,7 +221,8 @@ def test_the_package_installs_offline_and_reads_a_release_without_the_extension(
     venv = tmp_path / "venv"
     subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(venv)], check=True)
     subprocess.run([str(venv / "bin" / "pip"), "install", "-q", "--no-build-isolation", "--no-index",
-                    os.path.abspath(source)], check=True, capture_output=True, cwd=tmp_path)
+                    os.path.abspath(source)], check=True, capture_output=True, cwd=tmp_path,
+                   env=dict(os.environ, FLOWSCAPE_PURE_PYTHON="1"))  # the numpy fallback alone
     script = """import sys, flowscape
 print(flowscape.__file__)
 assert not flowscape.native_available()
@@ -485,25 +486,31 @@ def rig_releases(tmp_path_factory):
     return out
 
 
-def test_numpy_models_round_trip_and_mask_what_the_renderer_masks(rig_releases):
+def rig_cameras(rig_releases):
+    """(rig, layout, camera, view record, numpy model) of every camera of the rig releases' first
+    sequence."""
     for rig, root in rig_releases.items():
         layout = flowscape.ReleaseLayout(root)
         meta = layout.meta("map00_seq00")
         for camera in layout.cameras:
             view = meta["views"][f"cameras/{camera}"]
-            model = flowscape.camera_model(view)
-            h, w = view["height"], view["width"]
-            y, x = np.mgrid[0:h, 0:w] + 0.5
-            pixels = np.stack([x, y], -1)
-            rays, seen = model.unproject(pixels)
-            back, ok = model.project(rays)
-            own = seen & ok
-            if view["model"] == "dual_fisheye":  # the ring past 90 degrees belongs to the other lens
-                own &= np.where(x >= h, -rays[..., 2], rays[..., 2]) >= 0
-            assert np.abs(back - pixels)[own].max() < 1e-6, (rig, camera)
-            depth = io.read_image(layout.frame_file("map00_seq00", "depth", 0, camera=camera))[..., 0]
-            # what the renderer leaves unseen (NaN depth) is what the numpy model cannot unproject
-            assert np.array_equal(np.isnan(depth), ~seen), (rig, camera)
+            yield rig, layout, camera, view, flowscape.camera_model(view)
+
+
+def test_numpy_models_round_trip_and_mask_what_the_renderer_masks(rig_releases):
+    for rig, layout, camera, view, model in rig_cameras(rig_releases):
+        h, w = view["height"], view["width"]
+        y, x = np.mgrid[0:h, 0:w] + 0.5
+        pixels = np.stack([x, y], -1)
+        rays, seen = model.unproject(pixels)
+        back, ok = model.project(rays)
+        own = seen & ok
+        if view["model"] == "dual_fisheye":  # the ring past 90 degrees belongs to the other lens
+            own &= np.where(x >= h, -rays[..., 2], rays[..., 2]) >= 0
+        assert np.abs(back - pixels)[own].max() < 1e-6, (rig, camera)
+        depth = io.read_image(layout.frame_file("map00_seq00", "depth", 0, camera=camera))[..., 0]
+        # what the renderer leaves unseen (NaN depth) is what the numpy model cannot unproject
+        assert np.array_equal(np.isnan(depth), ~seen), (rig, camera)
 
 
 def test_a_static_point_seen_off_the_rig_origin_flows_to_its_projection_by_both_poses(rig_releases):
@@ -695,3 +702,50 @@ def test_a_hash_split_with_a_validation_side_loads(tiny_release, tmp_path):
     wrong = subprocess.run([f"{BIN}/flowscape_split", str(root), "--val-share", "0.4"],
                            capture_output=True, text=True)
     assert wrong.returncode == 2 and "belong to --method hash" in wrong.stderr
+
+
+def test_a_crop_or_a_scale_of_a_camera_view_comes_with_its_adjusted_camera(rig_releases,
+                                                                           tiny_release):
+    """Issue 35: crops of a fisheye view returned no camera. crop_view and scale_view give the
+    record of the cropped or resized image: every direction is seen where the image operation
+    moved it, (u - x0, v - y0) and (sx u, sy v) in continuous coordinates, for every model."""
+    rng = np.random.default_rng(5)
+    for rig, layout, camera, view, model in rig_cameras(rig_releases):
+        w, h = view["width"], view["height"]
+        pixels = np.stack([rng.uniform(0, w, 400), rng.uniform(0, h, 400)], -1)
+        rays, seen = model.unproject(pixels)
+        where, ok = model.project(rays[seen])
+        resized = flowscape.camera_model(flowscape.scale_view(view, 2 * w, 2 * h))
+        moved, ok2 = resized.project(rays[seen])
+        assert ok2[ok].all() and np.abs(moved[ok] - 2 * where[ok]).max() < 1e-6, rig
+        if view["model"] == "dual_fisheye":
+            with pytest.raises(ValueError, match="not a dual_fisheye image"):
+                flowscape.crop_view(view, 3, 5, w - 8, h - 8)
+            continue
+        cropped = flowscape.camera_model(flowscape.crop_view(view, 3, 5, w - 8, h - 8))
+        moved, ok2 = cropped.project(rays[seen])
+        assert np.abs(moved[ok] - (where[ok] - [3, 5])).max() < 1e-6, rig
+
+    # through the dataset: Augmentation's crop hands out the cropped fisheye's camera
+    dataset = flowscape.FlowScape(rig_releases["fisheye"], "train", camera="front",
+                                  as_tensors=False, extras=("calibration",))
+    sample = dataset.sample(0)
+    view = json.loads(sample["calibration"])
+    assert view["model"] == "kannala_brandt" and "poses" not in view
+    cropped = flowscape.Augmentation(jitter=False, seed=3, crop=(32, 40))(sample)
+    after = json.loads(cropped["calibration"])
+    assert (after["width"], after["height"]) == (40, 32)
+    shift = np.subtract(view["parameters"]["K"], after["parameters"]["K"])[:2, 2]
+    x0, y0 = int(shift[0]), int(shift[1])
+    assert np.array_equal(cropped["img1"], sample["img1"][y0:y0 + 32, x0:x0 + 40])
+    with pytest.raises(ValueError, match="a mirrored image has no camera"):
+        flowscape.flip(sample)
+    batch = next(iter(torch.utils.data.DataLoader(
+        flowscape.FlowScape(rig_releases["fisheye"], "train", camera="front",
+                            extras=("calibration",)), batch_size=2)))
+    assert isinstance(batch[4]["calibration"][0], str)
+    with pytest.raises(ValueError, match="calibration' is for cameras and cube faces"):
+        flowscape.FlowScape(tiny_release, "train", extras=("calibration",))
+    faces = flowscape.FlowScape(tiny_release, "train", faces=("left",), extras=("calibration",),
+                                as_tensors=False)
+    assert json.loads(faces.sample(0)["calibration"])["model"] == "pinhole"

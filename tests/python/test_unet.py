@@ -16,6 +16,8 @@ import torch.nn.functional as F
 from flowscape import io
 
 APPLY = os.environ.get("FLOWSCAPE_UNET_APPLY", "build/tests/unet_apply")
+pytestmark = pytest.mark.skipif(not os.path.exists(APPLY),
+                                reason="a build without the neural denoiser (FLOWSCAPE_DENOISER=OFF)")
 LAYERS = ["enc_conv0", "enc_conv1", "enc_conv2", "enc_conv3", "enc_conv4", "enc_conv5a",
           "enc_conv5b", "dec_conv4a", "dec_conv4b", "dec_conv3a", "dec_conv3b", "dec_conv2a",
           "dec_conv2b", "dec_conv1a", "dec_conv1b", "dec_conv0"]

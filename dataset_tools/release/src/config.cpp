@@ -12,6 +12,8 @@
 #include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/renderer/calibration_file.h"
+#include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
 #include "json_integer.h"
@@ -39,11 +41,17 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
   visit("asset_packs", c.asset_packs);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
+  visit("rig_mount", c.rig_mount), visit("scale", c.scale);
   visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
   visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
   visit("vignetting", c.vignetting), visit("chromatic_aberration", c.chromatic_aberration);
   visit("bayer", c.bayer), visit("jpeg_quality", c.jpeg_quality);
   visit("lens_drops", c.lens_drops), visit("lens_dirt", c.lens_dirt);
+}
+
+// A rig the user's file describes (a rig file or a calibration), not a preset.
+bool is_rig_file(const std::string& rig) {
+  return rig.ends_with(".json") || is_calibration_file(rig);
 }
 
 template <class T>
@@ -81,6 +89,9 @@ void validate(const ReleaseConfig& c) {
   require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
   require(c.denoise == "atrous" || c.denoise == "oidn" || c.denoise == "none",
           "denoise must be atrous, oidn or none");
+  require(c.denoise != "oidn" || neural_denoiser_built(),
+          "denoise oidn needs the neural denoiser, which this build leaves out "
+          "(-DFLOWSCAPE_DENOISER=OFF): use atrous or none, or rebuild with it");
   require(c.denoise_model == "default" || c.denoise_model == "small",
           "denoise_model must be default or small");
   require(!c.weathers.empty(), "weathers must not be empty");
@@ -96,6 +107,14 @@ void validate(const ReleaseConfig& c) {
   require(c.lens_drops >= -1 && c.lens_drops <= 200,
           "lens_drops must be in -1..200 (-1: in rain only)");
   require(c.lens_dirt >= 0 && c.lens_dirt <= 1, "lens_dirt must be in 0..1");
+  require(c.scale > 0 && c.scale <= 4, "scale must be in (0, 4]");
+  require(c.scale == 1 || is_rig_file(c.rig),
+          "scale is for a rig file or calibration: the " + c.rig + " rig is sized by resolution");
+  require(c.rig_mount.empty() || (c.rig_mount.size() == 6 && is_calibration_file(c.rig)),
+          "rig_mount is x, y, z, yaw, pitch, roll for a calibration file's first camera (the "
+          "rig is " +
+              c.rig + ")");
+  for (double v : c.rig_mount) require(std::isfinite(v), "rig_mount must be finite");
   for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");
@@ -131,9 +150,15 @@ int indirect_samples(const ReleaseConfig& c) {
 
 Rig release_rig(const ReleaseConfig& c) {
   if (c.rig == kFlowscapeRig) return {kFlowscapeRig, {}};
-  if (!c.rig.ends_with(".json")) return rig_preset(c.rig, c.height);
+  if (!is_rig_file(c.rig)) return rig_preset(c.rig, c.height);
+  std::optional<CameraMount> mount;
+  if (c.rig_mount.size() == 6)
+    mount = CameraMount{{c.rig_mount[0], c.rig_mount[1], c.rig_mount[2]},
+                        {c.rig_mount[3], c.rig_mount[4], c.rig_mount[5]}};
   try {
-    return rig_from_json(read_json(c.rig));
+    const Rig rig = c.rig.ends_with(".json") ? rig_from_json(read_json(c.rig))
+                                             : rig_from_calibration(c.rig, mount);
+    return c.scale == 1 ? rig : scaled_rig(rig, c.scale);
   } catch (const std::invalid_argument& e) {
     throw FileError(c.rig, e.what());
   }

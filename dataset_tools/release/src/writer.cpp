@@ -303,8 +303,8 @@ nlohmann::json recorded_config(const fs::path& out) {
     const nlohmann::json now = to_json(ReleaseConfig{});
     for (const char* key :
          {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
-          "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops",
-          "lens_dirt"})  // the defaults hold what releases without them did
+          "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops", "lens_dirt", "rig_mount",
+          "scale"})  // the defaults hold what releases without them did
       if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <stdexcept>
 
 #include "lens_math.h"
@@ -35,6 +36,48 @@ std::shared_ptr<const Lens> make_lens(const std::string& model, const nlohmann::
                               "\" (pinhole, equidistant, kannala_brandt, double_sphere, "
                               "woodscape, dual_fisheye, panoramic_annular; OpenCV's fisheye and "
                               "plumb_bob, Kalibr's radtan name two of them)");
+}
+
+namespace {
+
+// K as OpenCV writes it, for an image scaled by (sx, sy): pixel centres at integers, so the centre
+// moves with the image's continuous coordinates (OpenCV's + 0.5).
+nlohmann::json scaled_k(const nlohmann::json& k, double sx, double sy) {
+  const lens::Intrinsics i = lens::intrinsics({{"K", k}});
+  return lens::Intrinsics{i.fx * sx, i.fy * sy, i.cx * sx, i.cy * sy}.matrix();
+}
+
+}  // namespace
+
+std::shared_ptr<const Lens> scaled_lens(const Lens& lens, double scale) {
+  const std::string model = lens.model();
+  const int height = int(std::lround(lens.height() * scale));
+  const int width = model == "dual_fisheye" ? 2 * height : int(std::lround(lens.width() * scale));
+  if (!(width >= 2 && height >= 2))
+    throw std::invalid_argument("a scale of " + std::to_string(scale) + " leaves a " +
+                                std::to_string(lens.width()) + " x " +
+                                std::to_string(lens.height()) + " image under 2 pixels");
+  const double sx = double(width) / lens.width(), sy = double(height) / lens.height();
+  nlohmann::json p = lens.parameters();
+  p["width"] = width, p["height"] = height;
+  if (p.contains("K")) p["K"] = scaled_k(p["K"], sx, sy);
+  if (model == "woodscape") {  // rho in pixels along x, the aspect ratio stretching y
+    for (nlohmann::json& k : p["k"]) k = k.get<double>() * sx;
+    p["aspect_ratio"] = p["aspect_ratio"].get<double>() * sy / sx;
+    p["cx_offset"] = p["cx_offset"].get<double>() * sx;
+    p["cy_offset"] = p["cy_offset"].get<double>() * sy;
+  } else if (model == "dual_fisheye") {
+    p["f"] = p["f"].get<double>() * sy;  // sx == sy
+  } else if (model == "panoramic_annular") {
+    // pixel = A m + centre with A = [c d; e 1]: scaled, A' = [sx c / sy, sx d / sy; e, 1] of
+    // m' = sy m, and f'(sy rho) = sy f(rho), so a_i' = a_i sy^(1 - i); OCamCalib's centre as K's
+    std::vector<double> a = p["affine"], centre = p["centre"], poly = p["polynomial"];
+    p["affine"] = {a[0] * sx / sy, a[1] * sx / sy, a[2]};
+    p["centre"] = {(centre[0] + 0.5) * sx - 0.5, (centre[1] + 0.5) * sy - 0.5};
+    for (std::size_t i = 0; i < poly.size(); ++i) poly[i] *= std::pow(sy, 1.0 - double(i));
+    p["polynomial"] = poly;
+  }
+  return make_lens(model, p);
 }
 
 std::shared_ptr<const Lens> kannala_brandt_200(int size) {

@@ -36,6 +36,15 @@ class Lens {
 // a field of view the model cannot reach monotonically.
 std::shared_ptr<const Lens> make_lens(const std::string& model, const nlohmann::json& parameters);
 
+// The same lens for an image `scale` times as large (a preview's smaller image): width and height
+// rounded (a dual fisheye's width twice its height), and the model's pixel-valued parameters
+// scaled with them per axis, sx = new width / width and sy likewise, so that every direction is
+// seen at the same place of the image: pixel' = (sx, sy) pixel in continuous coordinates. In
+// OpenCV's pixel convention K's focal lengths scale by sx and sy and its centre by
+// cx' = sx (cx + 0.5) - 0.5 (docs/cameras.md). Throws std::invalid_argument for a scale that
+// leaves fewer than 2 pixels.
+std::shared_ptr<const Lens> scaled_lens(const Lens& lens, double scale);
+
 // The lenses of the rig presets (rig.h), each with the size of its image.
 std::shared_ptr<const Lens> kannala_brandt_200(int size);  // 200 degrees, mild distortion
 std::shared_ptr<const Lens> woodscape_190(int width, int height);

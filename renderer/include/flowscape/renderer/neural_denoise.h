@@ -36,6 +36,9 @@ UNetWeights read_unet_weights(const std::filesystem::path& tza);
 // transformed (transfer function, normalisation); tiles of at most 256 x 256 pixels with 32 of
 // overlap (zero-padded to multiples of 16, as OIDN's alignment), so memory stays bounded; the same
 // bytes for any thread count (each tile runs single-threaded on oneDNN, tiles in parallel).
+// Whether this build has the U-Net's forward pass (CMake option FLOWSCAPE_DENOISER, oneDNN);
+// without it a UNet cannot be made (std::runtime_error saying how to get one).
+bool neural_denoiser_built();
 class UNet {
  public:
   explicit UNet(UNetWeights weights);

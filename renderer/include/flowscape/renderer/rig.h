@@ -38,6 +38,10 @@ Rig rig_preset(const std::string& name, int size);
 // global shutter); model "equirectangular" takes parameters {"height"}, a mount without rotation
 // and no rolling shutter. Throws std::invalid_argument naming what is wrong (docs/cameras.md).
 Rig rig_from_json(const nlohmann::json& json);
+// The rig for images `scale` times as large (previews): every camera's image size and
+// intrinsics scaled (lens.h's scaled_lens; an equirectangular camera's height rounded), mounts
+// unchanged. Throws std::invalid_argument for a scale that leaves an image under 2 pixels.
+Rig scaled_rig(const Rig& rig, double scale);
 // What meta.json records and rig_from_json reads back.
 nlohmann::json to_json(const Rig& rig);
 

@@ -96,8 +96,15 @@ struct ReleaseConfig {
   std::vector<int> flow_gaps{1};
   // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
   // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),
-  // or a rig file (.json, docs/cameras.md).
+  // a rig file (.json, docs/cameras.md), or a calibration file (.yaml, .yml, .xml: OpenCV's or
+  // Kalibr's, renderer/calibration_file.h) mounted by `rig_mount`.
   std::string rig = "flowscape";
+  // A calibration's first camera on the rig: x, y, z (metres), yaw, pitch, roll (degrees); empty
+  // for every other rig.
+  std::vector<double> rig_mount;
+  // A rig file's or calibration's image sizes and intrinsics scaled by this (previews; 1: as
+  // given). Presets and the flowscape rig are sized by `height`.
+  double scale = 1;
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
