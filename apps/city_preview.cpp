@@ -15,6 +15,8 @@
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/gallery.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/scenes/model_io.h"
 
@@ -37,6 +39,7 @@ struct Options {
   bool plan = false;              // seen from above instead of from the ego
   bool actors = false;            // the gallery of the built-in actor models instead
   std::vector<std::string> actor_models;
+  std::string scenario, from_release;  // one sequence's scenario file, or a release's sequence
 };
 
 // A pinhole 40 degrees wide looking straight down on the middle of the map's roads, north up,
@@ -119,6 +122,55 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
     write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
   }
   return {std::move(labelled), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
+          semantic_to_color(gt.semantic.view())};
+}
+
+// The scenario of --scenario FILE or --from-release SEQUENCE_FOLDER, with the config of the
+// release it renders in: the defaults with the scenario's release-wide keys, or the release's own.
+std::pair<ReleaseConfig, Scenario> chosen_scenario(const Options& o) {
+  if (!o.scenario.empty()) {
+    ConfigSources sources;
+    sources.scenarios = {o.scenario};
+    return {resolve_config(sources), read_scenario(o.scenario)};
+  }
+  const std::filesystem::path sequence = o.from_release,
+                              release = sequence.parent_path().parent_path();
+  const SequenceMeta meta = read_meta(sequence);
+  if (meta.scenario.is_null())
+    throw FileError(sequence / "meta.json", "records no scenario (made before flowscape 0.10)");
+  ReleaseConfig config = release_config_from_json(read_json(release / "config.json"));
+  config.scenarios.clear();  // the recorded scenario stands for its file
+  const Scenario scenario = scenario_from_json(meta.scenario);
+  if (const std::string warning = version_warning(scenario); !warning.empty())
+    std::fprintf(diagnostics(), "city_preview: %s: %s\n", o.from_release.c_str(), warning.c_str());
+  return {config, scenario};
+}
+
+// One row: colour | flow | semantics of the chosen scenario's sequence (its ERP) at the frame
+// nearest the options' time, built as its release builds it; with --gltf, its scene at that time
+// and its scene record as <name>.gltf and <name>.json.
+std::vector<Image<std::uint8_t>> render_scenario(const Options& o) {
+  const auto [config, scenario] = chosen_scenario(o);
+  const int frame = int(std::lround(o.time * kFrameRate));
+  if (frame + 1 >= config.frames)
+    throw std::invalid_argument("--time " + std::to_string(o.time) + ": the sequence has " +
+                                std::to_string(config.frames) + " frames");
+  const Sequence sequence = make_sequence(sequence_spec(config, scenario, o.scenario));
+  Renderer renderer(sequence.city.scene);
+  const FramePair frames = sequence.frame_pair(frame);
+  const Projection erp = Projection::equirectangular(o.height);
+  const GroundTruth gt = renderer.ground_truth(erp, frames);
+  const Image<float> color = release_color(config, sequence, renderer, erp, frame, gt);
+  if (!o.gltf_dir.empty()) {
+    std::filesystem::create_directories(o.gltf_dir);
+    const std::string name = o.scenario.empty()
+                                 ? std::filesystem::path(o.from_release).filename().string()
+                                 : std::filesystem::path(o.scenario).stem().string();
+    const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / name;
+    export_gltf(sequence.city.scene, frames.time, base.string() + ".gltf");
+    write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
+  }
+  return {linear_to_srgb8(color.view()), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
           semantic_to_color(gt.semantic.view())};
 }
 
@@ -223,6 +275,15 @@ int main(int argc, char** argv) {
                  "with --actors: these models only (hatchback saloon estate suv pickup van taxi "
                  "police delivery_van city_bus box_truck lorry motorbike bicycle man woman child "
                  "umbrella jogger)");
+  app.add_option("--scenario", o.scenario,
+                 "one row of a scenario file's sequence (docs/scenarios.md) at --time; with "
+                 "--gltf its scene there");
+  auto* from_release =
+      app.add_option("--from-release", o.from_release,
+                     "SEQUENCE_FOLDER (release/sequences/map00_seq03): one row of a release's "
+                     "sequence, rebuilt from its recorded scenario and the release's config; with "
+                     "--gltf its scene, as the release rendered it");
+  from_release->excludes(app.get_option("--scenario"));
   finish_options(app, "city_preview");
   if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
@@ -235,6 +296,12 @@ int main(int argc, char** argv) {
       sheet = actor_gallery({o.height, o.color, o.actor_models});
       write_image(o.out, contact_sheet(sheet));
       std::printf("%s: %zu models\n", o.out.c_str(), sheet.size());
+      return 0;
+    }
+    if (!o.scenario.empty() || !o.from_release.empty()) {
+      sheet.push_back(render_scenario(o));
+      write_image(o.out, contact_sheet(sheet));
+      std::printf("%s\n", o.out.c_str());
       return 0;
     }
     for (const std::string& rig : o.rigs) {

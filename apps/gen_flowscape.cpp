@@ -15,6 +15,7 @@
 #include "flowscape/core/files.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/release/writer.h"
 #include "flowscape/renderer/calibration_file.h"
@@ -229,6 +230,10 @@ int main(int argc, char** argv) {
   option("--scale", "scale", defaults.scale,
          "scale a rig file's or calibration's image sizes and intrinsics (0.25: a quick preview; "
          "K as docs/cameras.md says)");
+  std::vector<std::string> scenarios;
+  app.add_option("--scenario", scenarios,
+                 "scenario files (.json, docs/scenarios.md), one sequence each, instead of the "
+                 "maps' sequences; options given here override their rig, ego and frames");
   option("--actors", "actors", defaults.actors,
          "detailed: the built-in vehicle families and people, parked vehicles as actors, the ego "
          "vehicle drawn; legacy: flowscape 0.9's box models (reproduces its releases)");
@@ -277,13 +282,23 @@ int main(int argc, char** argv) {
     if (!models.empty()) given["models"] = parse_models(models);
     if (!packs.empty()) given["asset_packs"] = packs;
     sources.file = config_file;
+    sources.scenarios.assign(scenarios.begin(), scenarios.end());
     ReleaseConfig c = resolve_config(sources);
     try {
       refuse_rig_options(given, c.rig);
+      for (const char* key : {"maps", "map_list", "sequences_per_map"})
+        if (!scenarios.empty() && given.contains(key))
+          throw std::invalid_argument(std::string(key == std::string("sequences_per_map")
+                                                      ? "--sequences-per-map"
+                                                      : "--maps") +
+                                      ": the scenarios say which sequences the release holds");
     } catch (const std::invalid_argument& e) {
       std::fprintf(diagnostics(), "gen_flowscape: error: %s (see --help)\n", e.what());
       return kUsageError;
     }
+    for (const std::string& file : scenarios)
+      if (const std::string warning = version_warning(read_scenario(file)); !warning.empty())
+        std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", file.c_str(), warning.c_str());
     if (!shard.empty()) parse_shard(shard, c);
     if (sources.demo && !out_option->count()) out = kDemoOut;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,

@@ -80,6 +80,26 @@ K = v['parameters']['K']
 assert (v['width'], v['height']) == (47, 30), (v['width'], v['height'])
 assert abs(K[0][0] - 457.587 * 47 / 752) < 1e-9 and abs(K[0][2] - ((379.999 + 0.5) * 47 / 752 - 0.5)) < 1e-9, K
 "
+# scenarios (issue 36): bad ones get one line naming the file
+examples="$(dirname "$0")/../examples/scenarios"
+check "gen_flowscape --scenario --check plans one sequence per file" bash -c "'$bin/gen_flowscape' --scenario '$examples/drone_junction.json' '$examples/turn_in_rain_at_dusk.json' --check --out '$work/s' | grep -q '^2 sequences'"
+echo '{"flowscape_scenario": 1, "wether": "rain"}' >"$work/typo.json"
+check "gen_flowscape --scenario: a misspelt key" fails_clearly 'typo.json: scenario: unknown key "wether" (did you mean "weather"?)' "$bin/gen_flowscape" --scenario "$work/typo.json" --check --out "$work/s"
+check "gen_flowscape --scenario: a missing file" fails_clearly "nothing.json" "$bin/gen_flowscape" --scenario "$work/nothing.json" --check --out "$work/s"
+check "gen_flowscape --scenario: --maps refused" fails_clearly "--maps: the scenarios say which sequences the release holds" "$bin/gen_flowscape" --scenario "$examples/drone_junction.json" --maps 2 --check --out "$work/s"
+# a release's sequence exported as it rendered it (mixed ego routes: one drives, one turns)
+check "a release of a driving and a turning sequence" "$bin/gen_flowscape" --maps 1 --sequences-per-map 2 --turn-share 0.5 --frames 3 --resolution 16 --face-size 8 --spp 1 --vehicles 6 --pedestrians 4 --out "$work/mixed"
+for seq in map00_seq00 map00_seq01; do
+  check "city_preview --from-release $seq exports its scene" "$bin/city_preview" --from-release "$work/mixed/sequences/$seq" --time 0.034 --height 16 --spp 1 --gltf "$work/exported" -o "$work/exported.png"
+  check "the exported scene record of $seq is the one meta.json recorded" /usr/bin/python3 -c "
+import json
+exported = json.load(open('$work/exported/$seq.json'))
+recorded = json.load(open('$work/mixed/sequences/$seq/meta.json'))['city']
+assert exported == recorded, [k for k in recorded if exported.get(k) != recorded[k]]
+"
+done
+check "and the two drive different routes" bash -c "! cmp -s '$work/exported/map00_seq00.json' '$work/exported/map00_seq01.json'"
+check "city_preview --scenario renders a scenario file" "$bin/city_preview" --scenario "$examples/turn_in_rain_at_dusk.json" --time 0.5 --height 16 --spp 1 -o "$work/scenario.png"
 touch "$work/a_file"
 check "gen_flowscape --check: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --frames 2 --check --out "$work/a_file"
 check "gen_flowscape: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 32 --face-size 16 --spp 1 --out "$work/a_file"

@@ -145,7 +145,12 @@ def runs_of(line, scratch):
         if program == "gen_flowscape" and "--demo" not in words:
             out = words[words.index("--out") + 1].rstrip("/") if "--out" in words else "dataset"
             sequences = "6" if out in ("dataset", "small") else "2"
-            runs += [words + ["--check"], tiny(words) + ["--sequences-per-map", sequences]]
+            if "--scenario" in words:  # the scenarios are the sequences
+                sized = tiny(words)
+                at = sized.index("--maps")
+                runs += [words + ["--check"], sized[:at] + sized[at + 2:]]
+            else:
+                runs += [words + ["--check"], tiny(words) + ["--sequences-per-map", sequences]]
         elif program == "city_preview":
             one_map = ["--maps", "0"] if "--gltf" in words and "--maps" not in words else []
             runs.append(tiny(words, PREVIEW_OPTIONS, TINY_PREVIEW) + one_map)
@@ -161,7 +166,7 @@ def main():
     failures = 0
     try:
         os.symlink(build, os.path.join(scratch, "build"))
-        for folder in ("python", "scripts", "docs"):
+        for folder in ("python", "scripts", "docs", "examples"):
             os.symlink(os.path.join(root, folder), os.path.join(scratch, folder))
         for source, line in documented_commands():
             for words in runs_of(line, scratch):

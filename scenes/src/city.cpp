@@ -394,6 +394,7 @@ Pose mount_pose(const RigMount& m, double distance) {
 }
 
 PoseTrack City::rig_track() const {
+  if (rig_path) return rig_path;
   return [ego = ego, distance = ego_distance, mount = mount](double t) {
     return ego(t) * mount_pose(mount, distance(t));
   };

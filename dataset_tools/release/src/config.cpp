@@ -12,6 +12,7 @@
 #include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/renderer/calibration_file.h"
 #include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/scenes/city.h"
@@ -41,7 +42,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
   visit("asset_packs", c.asset_packs);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
-  visit("rig_mount", c.rig_mount), visit("scale", c.scale);
+  visit("rig_mount", c.rig_mount), visit("scale", c.scale), visit("scenarios", c.scenarios);
   visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
   visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
   visit("vignetting", c.vignetting), visit("chromatic_aberration", c.chromatic_aberration);
@@ -235,6 +236,12 @@ ReleaseConfig resolve_config(const ConfigSources& sources) {
       throw FileError(sources.file, e.what());
     }
   }
+  if (!sources.scenarios.empty()) {
+    nlohmann::json keys = release_keys(sources.scenarios, sources.command_line);
+    for (const std::filesystem::path& file : sources.scenarios)
+      keys["scenarios"].push_back(file.string());
+    config = release_config_from_json(keys, config);
+  }
   if (sources.command_line.is_null()) return config;
   return release_config_from_json(sources.command_line, config);
 }
@@ -301,7 +308,21 @@ std::vector<int> release_maps(const ReleaseConfig& c) {
   return maps;
 }
 
+// One plan per scenario file, named after its map (map<MM>_seq<SS>, numbered within the map).
+std::vector<SequencePlan> scenario_plans(const ReleaseConfig& c) {
+  std::vector<SequencePlan> plans;
+  std::map<int, int> per_map;
+  for (const std::string& file : c.scenarios) {
+    const Scenario s = read_scenario(file);
+    const int index = per_map[s.map]++;
+    plans.push_back({sequence_name(s.map, index), s.map, index, int(plans.size()), s.weather,
+                     s.time_of_day, s.sky, s.seed, s.route == "turn", file});
+  }
+  return plans;
+}
+
 std::vector<SequencePlan> plan_sequences(const ReleaseConfig& c) {
+  if (!c.scenarios.empty()) return scenario_plans(c);
   std::vector<SequencePlan> plans;
   for (int m : release_maps(c))
     for (int s = 0; s < c.sequences_per_map; ++s) {

@@ -161,7 +161,8 @@ nlohmann::json to_json(const SequenceMeta& m) {
                                     {"boxes_2d", &m.boxes},
                                     {"rig", &m.rig},
                                     {"statistics", &m.statistics},
-                                    {"final", &m.final}})
+                                    {"final", &m.final},
+                                    {"scenario", &m.scenario}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }
@@ -192,6 +193,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.rig = j.value("rig", nlohmann::json());
     m.statistics = j.value("statistics", nlohmann::json());
     m.final = j.value("final", nlohmann::json());
+    m.scenario = j.value("scenario", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());

@@ -7,8 +7,10 @@
 #include <memory>
 #include <mutex>
 
+#include "flowscape/core/files.h"
 #include "flowscape/core/random.h"
 #include "flowscape/release/classes.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/renderer/denoise.h"
 #include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/scenes/actors.h"
@@ -16,19 +18,32 @@
 namespace flowscape {
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan) {
-  SequenceSpec spec{plan.map,
-                    plan.weather,
-                    plan.seed,
-                    config.vehicles,
-                    config.pedestrians,
-                    int(plan.seed % 100),
-                    config.ego_routes == "free" ? EgoRoute::Free
-                    : plan.turns                ? EgoRoute::Turn
-                                                : EgoRoute::Drive,
+  return sequence_spec(config, scenario_of(config, plan), plan.scenario_file);
+}
+
+SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
+                           const std::filesystem::path& source) {
+  SequenceSpec spec{s.map,
+                    s.weather,
+                    s.seed,
+                    s.vehicles,
+                    s.pedestrians,
+                    int(s.seed % 100),
+                    s.route == "free"   ? EgoRoute::Free
+                    : s.route == "turn" ? EgoRoute::Turn
+                                        : EgoRoute::Drive,
                     config.frames,
                     config.models};
   set_actors(spec, config);
-  spec.time_of_day = plan.time_of_day, spec.sky = plan.sky;
+  spec.time_of_day = s.time_of_day, spec.sky = s.sky;
+  if (s.path) {
+    try {
+      spec.rig_path = rig_path_track(s, release_rig(config));
+    } catch (const std::invalid_argument& e) {
+      throw FileError(source, e.what());
+    }
+    spec.draw_ego = false;  // a handheld camera or a drone: no car under it
+  }
   return spec;
 }
 
@@ -137,6 +152,7 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;
   city_config.asset_packs = spec.asset_packs;
   Sequence s{spec, make_city(city_config), weather};
+  s.city.rig_path = spec.rig_path;
   apply_weather(s.weather, spec.seed, s.city.rig_track(), s.city.scene);
   return s;
 }
@@ -215,6 +231,7 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
     meta.views[view]["poses"] = poses;
   }
   meta.actors = actor_records(s, config.frames, config.classes);
+  meta.scenario = to_json(scenario_of(config, plan));
   return meta;
 }
 

@@ -304,7 +304,7 @@ nlohmann::json recorded_config(const fs::path& out) {
     for (const char* key :
          {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
           "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops", "lens_dirt", "rig_mount",
-          "scale"})  // the defaults hold what releases without them did
+          "scenarios", "scale"})  // the defaults hold what releases without them did
       if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;

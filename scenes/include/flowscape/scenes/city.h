@@ -137,7 +137,10 @@ struct City {
   std::function<Area(const Eigen::Vector2d&)> area_at;
   std::function<double(const Eigen::Vector2d&)> ground_height;
 
-  Pose rig(double t) const;     // the camera rig: ego(t) * mount_pose(mount, ego_distance(t))
+  // A path of the rig's own (a handheld camera, a drone: scenes/trajectory.h) instead of the ego's;
+  // empty: the rig rides on the ego.
+  PoseTrack rig_path;
+  Pose rig(double t) const;     // the camera rig: rig_path(t), else ego(t) * mount_pose(...)
   PoseTrack rig_track() const;  // the same, as a track that does not refer to this City
 };
 

@@ -105,6 +105,9 @@ struct ReleaseConfig {
   // A rig file's or calibration's image sizes and intrinsics scaled by this (previews; 1: as
   // given). Presets and the flowscape rig are sized by `height`.
   double scale = 1;
+  // Scenario files (release/scenario.h), one sequence each, instead of the maps' sequences
+  // (maps, map_list and sequences_per_map then unused).
+  std::vector<std::string> scenarios;
   int shard = 0, shards = 1;  // this process makes the sequences k with k % shards == shard
 };
 void validate(const ReleaseConfig& config);  // throws std::invalid_argument naming the value
@@ -138,6 +141,9 @@ struct ConfigSources {
   bool demo = false;
   std::filesystem::path file;  // empty: none
   nlohmann::json command_line = nlohmann::json::object();
+  // Scenario files: their release-wide keys (scenario.h's release_keys) between the file and the
+  // command line, and the release's sequences.
+  std::vector<std::filesystem::path> scenarios = {};
 };
 // Errors name the config file where it is the file's value that is wrong.
 ReleaseConfig resolve_config(const ConfigSources& sources);
@@ -156,6 +162,7 @@ struct SequencePlan {
   std::string weather, time_of_day, sky;
   std::uint64_t seed;
   bool turns;  // its ego turns at a junction (ReleaseConfig::turn_share of ego_routes "mix")
+  std::filesystem::path scenario_file = {};  // the scenario it renders; empty: a map's sequence
 };
 // The maps a release renders: map_list, else 0 .. maps - 1.
 std::vector<int> release_maps(const ReleaseConfig& c);

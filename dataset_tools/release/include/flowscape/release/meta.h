@@ -39,6 +39,7 @@ struct SequenceMeta {
   nlohmann::json rig;         // the rig's record (renderer/rig.h) for other rigs than flowscape
   nlohmann::json statistics;  // statistics.h's record of the sequence (null when not recorded)
   nlohmann::json final;       // the final pass's shutter, sensor and exposures (final_pass.h)
+  nlohmann::json scenario;    // the scenario it renders (scenario.h; null in older releases)
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from

@@ -29,10 +29,16 @@ struct SequenceSpec {
   std::vector<std::string> asset_packs{};
   std::string time_of_day = "day";  // weather.h's at_time_of_day
   std::string sky = "physical";     // weather.h's under_sky
+  PoseTrack rig_path{};  // the rig's own path (a scenario's waypoints or pose file), or empty
 };
-// The spec of a planned sequence of a release (its ego start follows from its seed, its route
-// from the plan's `turns`).
+// The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
+// start follows from its seed, its route from the plan's `turns` or the scenario file).
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);
+// The spec of a scenario (scenario.h) in a release made with `config` (its rig, frames, models,
+// actors); `source` names the scenario's file in errors.
+struct Scenario;
+SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& scenario,
+                           const std::filesystem::path& source = {});
 // The release's actors and ego vehicle in a spec: the actor style, whether the ego is drawn
 // (ReleaseConfig::ego) and the cameras it must keep clear of (the release's rig).
 void set_actors(SequenceSpec& spec, const ReleaseConfig& config);

@@ -1,0 +1,318 @@
+#include "flowscape/release/scenario.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "flowscape/core/files.h"
+#include "flowscape/core/names.h"
+#include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/scenes/city.h"
+#include "flowscape/weather/weather.h"
+
+namespace flowscape {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("scenario: " + what);
+}
+
+// Every key of `object` is one of `known` (a misspelt one: the nearest suggested).
+void require_known(const nlohmann::json& object, const std::vector<std::string>& known,
+                   const std::string& where) {
+  require(object.is_object(), where + " must be an object");
+  for (const auto& [key, value] : object.items())
+    require(std::find(known.begin(), known.end(), key) != known.end(),
+            where + "unknown key \"" + key + "\"" + did_you_mean(key, known));
+}
+
+template <class T>
+T value(const nlohmann::json& object, const char* key, T fallback, const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  try {
+    return object.at(key).get<T>();
+  } catch (const nlohmann::json::exception&) {
+    throw std::invalid_argument("scenario: " + where + "\"" + key + "\" has the wrong type");
+  }
+}
+
+Vec3 vector3(const nlohmann::json& j, const std::string& what) {
+  require(j.is_array() && j.size() == 3 &&
+              std::all_of(j.begin(), j.end(), [](const auto& v) { return v.is_number(); }),
+          what + " must be 3 numbers");
+  const Vec3 v(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+  require(v.allFinite(), what + " must be finite");
+  return v;
+}
+
+nlohmann::json array3(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+int map_number(const nlohmann::json& map) {
+  if (map.is_number_integer()) {
+    require(map.get<int>() >= 0 && map.get<int>() < kMapCount,
+            "world \"map\" must be 0.." + std::to_string(kMapCount - 1) + " or a map's name");
+    return map.get<int>();
+  }
+  std::vector<std::string> names;
+  for (int m = 0; m < kMapCount; ++m) names.push_back(map_name(m));
+  const std::string name = map.is_string() ? map.get<std::string>() : "";
+  const auto found = std::find(names.begin(), names.end(), name);
+  require(found != names.end(),
+          "world \"map\": no map \"" + name + "\"" + did_you_mean(name, names));
+  return int(found - names.begin());
+}
+
+Waypoint waypoint_from_json(const nlohmann::json& j, std::size_t k) {
+  const std::string where = "waypoint " + std::to_string(k) + ": ";
+  require_known(j, {"position", "time", "speed", "yaw_pitch_roll_degrees"}, where);
+  require(j.contains("position"), where + "needs a \"position\" [x, y, z] (metres)");
+  Waypoint w{vector3(j.at("position"), where + "position"), {}, {}, {}};
+  if (j.contains("time")) w.time = value<double>(j, "time", 0, where);
+  if (j.contains("speed")) w.speed = value<double>(j, "speed", 0, where);
+  if (j.contains("yaw_pitch_roll_degrees"))
+    w.yaw_pitch_roll_degrees =
+        vector3(j.at("yaw_pitch_roll_degrees"), where + "yaw_pitch_roll_degrees");
+  return w;
+}
+
+nlohmann::json to_json(const Waypoint& w) {
+  nlohmann::json j = {{"position", array3(w.position)}};
+  if (w.time) j["time"] = *w.time;
+  if (w.speed) j["speed"] = *w.speed;
+  if (w.yaw_pitch_roll_degrees) j["yaw_pitch_roll_degrees"] = array3(*w.yaw_pitch_roll_degrees);
+  return j;
+}
+
+void origin_from_json(const nlohmann::json& j, RigPath& path) {
+  require_known(j, {"position", "yaw_pitch_roll_degrees"}, "motion origin: ");
+  if (j.contains("position")) path.origin_position = vector3(j.at("position"), "origin position");
+  if (j.contains("yaw_pitch_roll_degrees"))
+    path.origin_yaw_pitch_roll_degrees =
+        vector3(j.at("yaw_pitch_roll_degrees"), "origin yaw_pitch_roll_degrees");
+}
+
+// {"route": ...} | {"waypoints": [...]} | {"pose_file", "format", "rate", "poses_of", "origin"}
+void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base, Scenario& s) {
+  require_known(j, {"route", "waypoints", "pose_file", "format", "rate", "poses_of", "origin"},
+                "motion: ");
+  const int kinds =
+      int(j.contains("route")) + int(j.contains("waypoints")) + int(j.contains("pose_file"));
+  require(kinds == 1,
+          "motion: give one of \"route\" (the ego's: drive, turn, free), "
+          "\"waypoints\" or \"pose_file\" (the rig's own path)");
+  if (j.contains("route")) {
+    s.route = value<std::string>(j, "route", "drive", "motion: ");
+    require(s.route == "drive" || s.route == "turn" || s.route == "free",
+            "motion \"route\" must be drive, turn or free");
+    return;
+  }
+  RigPath path;
+  if (j.contains("waypoints")) {
+    const nlohmann::json& points = j.at("waypoints");
+    require(points.is_array(), "motion \"waypoints\" must be a list");
+    for (std::size_t k = 0; k < points.size(); ++k)
+      path.waypoints.push_back(waypoint_from_json(points[k], k));
+    try {
+      waypoint_times(path.waypoints);
+    } catch (const std::invalid_argument& e) {
+      require(false, std::string("motion: ") + e.what());
+    }
+  } else {
+    const std::string file = value<std::string>(j, "pose_file", "", "motion: ");
+    // absolute, so that the scenario a meta.json records finds it from anywhere
+    path.pose_file = std::filesystem::absolute(base / file);
+    path.format = value<std::string>(j, "format", "tum", "motion: ");
+    path.rate = value<double>(j, "rate", 10.0, "motion: ");
+    path.poses_of = value<std::string>(j, "poses_of", "rig", "motion: ");
+    try {
+      pose_format(path.format);
+    } catch (const std::invalid_argument& e) {
+      require(false, std::string("motion: ") + e.what());
+    }
+    require(path.rate > 0 && std::isfinite(path.rate), "motion \"rate\" must be positive");
+    if (!std::filesystem::is_regular_file(path.pose_file))
+      throw FileError(path.pose_file, "no such pose file");
+    if (j.contains("origin")) origin_from_json(j.at("origin"), path);
+  }
+  require(!j.contains("origin") || !path.pose_file.empty(), "motion \"origin\" is for a pose file");
+  s.path = std::move(path);
+}
+
+nlohmann::json motion_json(const Scenario& s) {
+  if (!s.path) return {{"route", s.route}};
+  if (s.path->pose_file.empty()) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const Waypoint& w : s.path->waypoints) points.push_back(to_json(w));
+    return {{"waypoints", points}};
+  }
+  return {{"pose_file", s.path->pose_file.string()},
+          {"format", s.path->format},
+          {"rate", s.path->rate},
+          {"poses_of", s.path->poses_of},
+          {"origin",
+           {{"position", array3(s.path->origin_position)},
+            {"yaw_pitch_roll_degrees", array3(s.path->origin_yaw_pitch_roll_degrees)}}}};
+}
+
+}  // namespace
+
+Pose RigPath::origin() const {
+  Pose pose = Pose::Identity();
+  const Vec3& a = origin_yaw_pitch_roll_degrees;
+  pose.linear() = look(a[0], a[1], a[2]) * look(0, 0, 0).transpose();  // the rig axes turned
+  pose.translation() = origin_position;
+  return pose;
+}
+
+Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path& base) {
+  require_known(j,
+                {"flowscape_scenario", "name", "world", "rig", "rig_mount", "ego", "motion",
+                 "traffic", "weather", "time_of_day", "sky", "frames", "frame_rate", "generator"},
+                "");
+  require(j.value("flowscape_scenario", 0) == kScenarioSchema,
+          "\"flowscape_scenario\": " + std::to_string(kScenarioSchema) +
+              " must say the schema version (this is flowscape's scenario schema " +
+              std::to_string(kScenarioSchema) + ")");
+  Scenario s;
+  s.name = value<std::string>(j, "name", s.name, "");
+  s.generator = value<std::string>(j, "generator", "", "");
+  const nlohmann::json world = j.value("world", nlohmann::json::object());
+  require_known(world, {"map", "seed"}, "world: ");
+  s.map = world.contains("map") ? map_number(world.at("map")) : 0;
+  s.seed = value<std::uint64_t>(world, "seed", 0, "world: ");
+  s.rig = value<std::string>(j, "rig", s.rig, "");
+  s.rig_mount = value<std::vector<double>>(j, "rig_mount", {}, "");
+  s.ego = value<std::string>(j, "ego", s.ego, "");
+  require(s.ego == "auto" || s.ego == "on" || s.ego == "off", "\"ego\" must be auto, on or off");
+  if (j.contains("motion")) motion_from_json(j.at("motion"), base, s);
+  require(!s.path || s.ego != "on",
+          "a rig with its own path (waypoints, a pose file) has no ego "
+          "vehicle under it: \"ego\" must be off or auto");
+  const nlohmann::json traffic = j.value("traffic", nlohmann::json::object());
+  require_known(traffic, {"vehicles", "pedestrians"}, "traffic: ");
+  s.vehicles = value<int>(traffic, "vehicles", s.vehicles, "traffic: ");
+  s.pedestrians = value<int>(traffic, "pedestrians", s.pedestrians, "traffic: ");
+  require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
+          "traffic: vehicles + pedestrians must be in 0..200");
+  s.weather = value<std::string>(j, "weather", s.weather, "");
+  s.time_of_day = value<std::string>(j, "time_of_day", s.time_of_day, "");
+  s.sky = value<std::string>(j, "sky", s.sky, "");
+  try {
+    weather_preset(s.weather), validate_time_of_day(s.time_of_day), validate_sky(s.sky);
+  } catch (const std::invalid_argument& e) {
+    require(false, e.what());
+  }
+  s.frames = value<int>(j, "frames", s.frames, "");
+  require(s.frames >= 2 && s.frames <= 999999, "\"frames\" must be in 2..999999");
+  s.frame_rate = value<double>(j, "frame_rate", s.frame_rate, "");
+  require(s.frame_rate == kFrameRate,
+          "\"frame_rate\": sequences are rendered at " + std::to_string(int(kFrameRate)) +
+              " frames per second in this version (its scene-flow units and gaps assume it)");
+  return s;
+}
+
+nlohmann::json to_json(const Scenario& s) {
+  nlohmann::json j = {{"flowscape_scenario", kScenarioSchema},
+                      {"name", s.name},
+                      {"world", {{"map", map_name(s.map)}, {"seed", s.seed}}},
+                      {"rig", s.rig},
+                      {"ego", s.ego},
+                      {"motion", motion_json(s)},
+                      {"traffic", {{"vehicles", s.vehicles}, {"pedestrians", s.pedestrians}}},
+                      {"weather", s.weather},
+                      {"time_of_day", s.time_of_day},
+                      {"sky", s.sky},
+                      {"frames", s.frames},
+                      {"frame_rate", s.frame_rate}};
+  if (!s.rig_mount.empty()) j["rig_mount"] = s.rig_mount;
+  if (!s.generator.empty()) j["generator"] = s.generator;
+  return j;
+}
+
+std::string version_warning(const Scenario& s) {
+  if (s.generator.empty() || s.generator == kGeneratorVersion) return "";
+  return "scenario \"" + s.name + "\" was recorded by " + s.generator + "; this is " +
+         kGeneratorVersion + ": its sequence may differ in bytes from the one recorded";
+}
+
+Scenario read_scenario(const std::filesystem::path& file) {
+  try {
+    return scenario_from_json(read_json(file), file.parent_path());
+  } catch (const std::invalid_argument& e) {
+    throw FileError(file, e.what());
+  }
+}
+
+nlohmann::json release_keys(const Scenario& s) {
+  nlohmann::json keys = {{"rig", s.rig}, {"ego", s.ego}, {"frames", s.frames}};
+  if (!s.rig_mount.empty()) keys["rig_mount"] = s.rig_mount;
+  return keys;
+}
+
+nlohmann::json release_keys(const std::vector<std::filesystem::path>& files,
+                            const nlohmann::json& overridden) {
+  nlohmann::json keys;
+  std::filesystem::path first;
+  for (const std::filesystem::path& file : files) {
+    nlohmann::json these = release_keys(read_scenario(file));
+    for (const auto& [key, value] : overridden.items()) these.erase(key);
+    if (keys.is_null()) {
+      keys = these, first = file;
+      continue;
+    }
+    for (const auto& [key, value] : these.items())
+      if (keys.value(key, nlohmann::json()) != value)
+        throw FileError(file, "\"" + key + "\" is " + value.dump() + " here and " +
+                                  keys.value(key, nlohmann::json()).dump() + " in " +
+                                  first.string() + ": the scenarios of one release share it " +
+                                  "(or set it for all on the command line)");
+  }
+  return keys;
+}
+
+Scenario scenario_of(const ReleaseConfig& config, const SequencePlan& plan) {
+  Scenario s = plan.scenario_file.empty() ? Scenario{} : read_scenario(plan.scenario_file);
+  if (plan.scenario_file.empty()) {
+    s.name = plan.name, s.map = plan.map, s.seed = plan.seed;
+    s.route = config.ego_routes == "free" ? "free" : plan.turns ? "turn" : "drive";
+    s.vehicles = config.vehicles, s.pedestrians = config.pedestrians;
+    s.weather = plan.weather, s.time_of_day = plan.time_of_day, s.sky = plan.sky;
+  }
+  s.rig = config.rig, s.rig_mount = config.rig_mount, s.ego = config.ego;  // the release's
+  s.frames = config.frames;
+  s.generator = kGeneratorVersion;  // what renders it now
+  return s;
+}
+
+PoseTrack rig_path_track(const Scenario& s, const Rig& rig) {
+  const double needed = s.frames / s.frame_rate;
+  if (s.path->pose_file.empty()) {
+    const double end = waypoint_times(s.path->waypoints).back();
+    require(end >= needed - 1e-9, "the waypoints end at " + std::to_string(end) + " s; " +
+                                      std::to_string(s.frames) + " frames need " +
+                                      std::to_string(needed) + " s");
+    return waypoint_track(s.path->waypoints);
+  }
+  const std::vector<TimedPose> poses =
+      read_pose_file(s.path->pose_file, pose_format(s.path->format), s.path->rate);
+  if (poses.back().time < needed - 1e-9)
+    throw FileError(s.path->pose_file, "its poses end at " + std::to_string(poses.back().time) +
+                                           " s; " + std::to_string(s.frames) + " frames need " +
+                                           std::to_string(needed) + " s");
+  Pose camera_to_rig = Pose::Identity();
+  if (s.path->poses_of != "rig") {
+    const auto camera =
+        std::find_if(rig.cameras.begin(), rig.cameras.end(),
+                     [&](const RigCamera& c) { return c.name == s.path->poses_of; });
+    require(camera != rig.cameras.end(), "motion \"poses_of\": the rig has no camera \"" +
+                                             s.path->poses_of + "\" (\"rig\" or a camera's name)");
+    camera_to_rig = camera->mount();
+  }
+  return [track = interpolated_track(poses), origin = s.path->origin(),
+          rig_from_camera = camera_to_rig.inverse()](double t) {
+    return origin * track(t) * rig_from_camera;
+  };
+}
+
+}  // namespace flowscape

@@ -1,0 +1,213 @@
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
+
+#include "../temp_dir.h"
+#include "flowscape/core/files.h"
+#include "flowscape/release/manifest.h"
+#include "flowscape/release/meta.h"
+#include "flowscape/release/scenario.h"
+#include "flowscape/release/writer.h"
+#include "tiny_release.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path write_json(const fs::path& path, const nlohmann::json& json) {
+  std::ofstream(path) << json.dump(1);
+  return path;
+}
+
+// A release of the scenario files with the tiny release's sizes.
+ReleaseConfig scenario_release(const std::vector<fs::path>& files) {
+  ConfigSources sources;
+  sources.scenarios = files;
+  sources.command_line = {{"resolution", 16}, {"face_size", 8}, {"spp", 1}};
+  return resolve_config(sources);
+}
+
+std::map<fs::path, std::string> files_under(const fs::path& dir) {
+  std::map<fs::path, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file() && entry.path().filename() != "meta.json")
+      files[fs::relative(entry.path(), dir)] = file_bytes(entry.path());
+  return files;
+}
+
+Pose from_row_major(const nlohmann::json& values) {
+  Pose pose = Pose::Identity();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c)
+      pose.matrix()(r, c) = values.at(std::size_t(4 * r + c)).get<double>();
+  return pose;
+}
+
+double angle_between(const Mat3& a, const Mat3& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle();
+}
+
+}  // namespace
+
+TEST_CASE("a scenario round-trips through JSON and names what is wrong") {
+  TempDir dir;
+  std::ofstream(dir.path / "walk.txt") << "0 0 0 1.6 0 0 0 1\n1 1 0 1.6 0 0 0 1\n";
+  const nlohmann::json drone = {{"flowscape_scenario", 1},
+                                {"name", "drone"},
+                                {"world", {{"map", "downtown"}, {"seed", 7}}},
+                                {"rig", "dual-fisheye"},
+                                {"motion",
+                                 {{"waypoints",
+                                   {{{"position", {0, 0, 20}}, {"time", 0}},
+                                    {{"position", {30, 5, 20}}, {"speed", 8}},
+                                    {{"position", {60, 0, 22}}, {"time", 9}}}}}},
+                                {"traffic", {{"vehicles", 30}, {"pedestrians", 10}}},
+                                {"weather", "rain"},
+                                {"time_of_day", "dusk"},
+                                {"frames", 20}};
+  const Scenario s = scenario_from_json(drone);
+  CHECK(s.map == 0);
+  REQUIRE(s.path);
+  CHECK(s.path->waypoints.size() == 3);
+  CHECK(to_json(scenario_from_json(to_json(s))) == to_json(s));
+  const nlohmann::json walk = {
+      {"flowscape_scenario", 1},
+      {"world", {{"map", 4}}},
+      {"motion",
+       {{"pose_file", "walk.txt"},
+        {"format", "tum"},
+        {"origin", {{"position", {1, 2, 0}}, {"yaw_pitch_roll_degrees", {90, 0, 0}}}}}}};
+  const Scenario replay = scenario_from_json(walk, dir.path);
+  CHECK(replay.path->pose_file == dir.path / "walk.txt");
+  CHECK(to_json(scenario_from_json(to_json(replay))) == to_json(replay));
+  CHECK(replay.path->origin().linear().col(0).isApprox(Vec3::UnitY(), 1e-12));  // turned 90 left
+
+  // a scenario another version recorded warns that a re-render may differ in bytes
+  nlohmann::json old = drone;
+  old["generator"] = "flowscape 0.9";
+  CHECK_THAT(version_warning(scenario_from_json(old)),
+             Catch::Contains("recorded by flowscape 0.9; this is flowscape 0.10") &&
+                 Catch::Contains("may differ in bytes"));
+  old["generator"] = kGeneratorVersion;
+  CHECK(version_warning(scenario_from_json(old)).empty());
+  CHECK(version_warning(s).empty());  // written by hand
+
+  const auto fails = [&](nlohmann::json j, const std::string& says) {
+    CHECK_THROWS_WITH(scenario_from_json(j, dir.path), Catch::Contains(says));
+  };
+  nlohmann::json bad = drone;
+  bad["wether"] = "fog";
+  fails(bad, "unknown key \"wether\" (did you mean \"weather\"?)");
+  bad = drone;
+  bad["motion"]["waypoints"] = {{{"position", {0, 0, 0}}, {"time", 0}}};
+  fails(bad, "a path needs at least 2 waypoints");
+  bad = drone;
+  bad["motion"]["waypoints"][2]["time"] = 1;
+  fails(bad, "waypoint 2: times must increase");
+  bad = drone;
+  bad["world"]["map"] = "downton";
+  fails(bad, "no map \"downton\" (did you mean \"downtown\"?)");
+  bad = drone;
+  bad["frame_rate"] = 25;
+  fails(bad, "\"frame_rate\": sequences are rendered at 30 frames per second");
+  bad = drone;
+  bad.erase("flowscape_scenario");
+  fails(bad, "must say the schema version");
+  bad = drone;
+  bad["ego"] = "on";
+  fails(bad, "has no ego vehicle under it");
+  bad = walk;
+  bad["motion"]["pose_file"] = "missing.txt";
+  fails(bad, "missing.txt: no such pose file");
+  bad = drone;
+  bad["motion"]["route"] = "turn";
+  fails(bad, "motion: give one of");
+}
+
+TEST_CASE("a built-in map's sequence rendered from its recorded scenario has the same bytes") {
+  TempDir dir;
+  ReleaseConfig config = tiny_release_config(2, 2);
+  config.ego_routes = "mix", config.turn_share = 0.5;  // one drives, one turns
+  write_release(config, dir.path / "maps", false);
+  std::vector<fs::path> files;
+  for (const char* scene : {"map00_seq00", "map00_seq01"}) {
+    const nlohmann::json scenario = read_meta(sequence_dir(dir.path / "maps", scene)).scenario;
+    REQUIRE(scenario.is_object());
+    files.push_back(write_json(dir.path / (std::string(scene) + ".json"), scenario));
+  }
+  CHECK(read_json(files[1])["motion"]["route"] == "turn");
+  ReleaseConfig from_scenarios = scenario_release(files);
+  from_scenarios.vehicles = config.vehicles, from_scenarios.pedestrians = config.pedestrians;
+  from_scenarios.weathers = config.weathers, from_scenarios.seed = config.seed;
+  write_release(from_scenarios, dir.path / "scenarios", false);
+  for (const char* scene : {"map00_seq00", "map00_seq01"}) {
+    const auto before = files_under(sequence_dir(dir.path / "maps", scene));
+    const auto after = files_under(sequence_dir(dir.path / "scenarios", scene));
+    CHECK(before.size() >= 20);  // colour, flow both ways, masks, ids, depth... of 2 frames
+    CHECK(before.size() == after.size());
+    CHECK(before == after);  // every image, flow and mask byte
+  }
+}
+
+TEST_CASE("a rig's own path: waypoints flown and a TUM file replayed, poses as meta.json records") {
+  TempDir dir;
+  const nlohmann::json drone = {{"flowscape_scenario", 1},
+                                {"world", {{"map", "downtown"}, {"seed", 3}}},
+                                {"rig", "fisheye"},
+                                {"motion",
+                                 {{"waypoints",
+                                   {{{"position", {0, 0, 20}}, {"time", 0}},
+                                    {{"position", {1, 0.5, 20.2}}, {"time", 0.05}},
+                                    {{"position", {2, 0, 20}}, {"time", 0.1}}}}}},
+                                {"traffic", {{"vehicles", 4}, {"pedestrians", 2}}},
+                                {"frames", 3}};
+  const fs::path drone_file = write_json(dir.path / "drone.json", drone);
+  // a handheld camera's TUM file, its poses at the frame times, given for the fisheye's own frame
+  std::ofstream tum(dir.path / "walk.txt");
+  std::vector<Pose> camera_poses;
+  char line[300];
+  for (int k = 0; k < 4; ++k) {
+    Pose pose = Pose::Identity();
+    pose.linear() = Eigen::AngleAxisd(0.1 * k, Vec3(0, 1, 0.2).normalized()).toRotationMatrix() *
+                    look(10, 0, 0);
+    pose.translation() = Vec3(0.4 * k, 0.05 * k, 1.6);
+    camera_poses.push_back(pose);
+    const Eigen::Quaterniond q(pose.linear());
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", k / 30.0,
+                  pose.translation().x(), pose.translation().y(), pose.translation().z(), q.x(),
+                  q.y(), q.z(), q.w());
+    tum << line;
+  }
+  tum.close();
+  nlohmann::json walk = drone;
+  walk["motion"] = {{"pose_file", "walk.txt"}, {"poses_of", "front"}};
+  walk["world"]["map"] = "suburb";
+  const fs::path walk_file = write_json(dir.path / "walk.json", walk);
+
+  ReleaseConfig config = scenario_release({drone_file, walk_file});
+  config.vehicles = 4, config.pedestrians = 2;
+  write_release(config, dir.path / "out", false);
+  const SequenceMeta flown = read_meta(sequence_dir(dir.path / "out", "map00_seq00"));
+  const PoseTrack path = waypoint_track(scenario_from_json(drone).path->waypoints);
+  REQUIRE(flown.poses.size() == 3);
+  for (int f = 0; f < 3; ++f) {
+    CHECK((flown.poses[f].translation() - path(f / 30.0).translation()).norm() < 1e-9);
+    CHECK(angle_between(flown.poses[f].linear(), path(f / 30.0).linear()) < 1e-9);
+  }
+  CHECK((flown.poses[0].translation() - Vec3(0, 0, 20)).norm() < 1e-3);  // waypoint 0 at t = 0
+  // the fisheye's poses in meta.json are the file's
+  const SequenceMeta walked = read_meta(sequence_dir(dir.path / "out", "map01_seq00"));
+  const nlohmann::json& view = walked.views.at("cameras/front");
+  for (int f = 0; f < 3; ++f) {
+    const Pose recorded = from_row_major(view.at("poses")[f]);
+    CHECK((recorded.translation() - camera_poses[f].translation()).norm() < 1e-9);
+    CHECK(angle_between(recorded.linear(), camera_poses[f].linear()) < 1e-9);
+  }
+  CHECK(walked.scenario.at("motion").at("poses_of") == "front");
+  // a path shorter than the sequence is named
+  ReleaseConfig longer = config;
+  longer.frames = 60;
+  CHECK_THROWS_WITH(write_release(longer, dir.path / "long", false),
+                    Catch::Contains("drone.json: scenario: the waypoints end at 0.1"));
+}
