@@ -4,8 +4,8 @@ repository root, in a scratch folder holding links to build/, python/ and script
 The scaling rule (so CI stays fast; README "Tests" states it): a release command without --demo
 runs as written with --check (options validated, the plan printed), then with its sizes swapped
 for a tiny release (1 map, 3 frames, 16 x 32 ERP, 8-pixel faces, 1 sample; a rig file's or
-calibration's cameras at --scale 1/16; 6 sequences where later commands split and train on the
-release (dataset/, small/), else 2), so the commands after it have a dataset; city_preview runs
+calibration's cameras at --scale 1/16; 6 sequences for dataset/ and 4 for small/, which later
+commands preview, split and train on, else 2), so the commands after it have a dataset; city_preview runs
 with few actors, 32-pixel images and one sample per pixel, and exports one map's glTF; a training
 run takes 20 steps. The files the docs
 name by example are made here: dataset folders (CUBE, frames/, flows/, seq/, flow/) from the tiny
@@ -144,7 +144,8 @@ def runs_of(line, scratch):
         program = os.path.basename(words[0])
         if program == "gen_flowscape" and "--demo" not in words:
             out = words[words.index("--out") + 1].rstrip("/") if "--out" in words else "dataset"
-            sequences = "6" if out in ("dataset", "small") else "2"
+            # the README previews map00_seq05; small/ is split and trained on
+            sequences = {"dataset": "6", "small": "4"}.get(out, "2")
             if "--scenario" in words:  # the scenarios are the sequences
                 sized = tiny(words)
                 at = sized.index("--maps")
