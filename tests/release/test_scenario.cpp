@@ -7,6 +7,7 @@
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
+#include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
 #include "tiny_release.h"
 
@@ -123,6 +124,40 @@ TEST_CASE("a scenario round-trips through JSON and names what is wrong") {
   bad = drone;
   bad["motion"]["route"] = "turn";
   fails(bad, "motion: give one of");
+}
+
+TEST_CASE("weather by parameters: set exactly over the seed's preset, named when wrong") {
+  const nlohmann::json foggy_dusk = {
+      {"flowscape_scenario", 1},
+      {"world", {{"map", "rural"}, {"seed", 9}}},
+      {"weather",
+       {{"preset", "cloud"}, {"fog_density", 0.03}, {"sun_elevation", 4.5}, {"wind", 0.2}}},
+      {"traffic", {{"vehicles", 2}, {"pedestrians", 2}}},
+      {"frames", 2}};
+  const Scenario s = scenario_from_json(foggy_dusk);
+  CHECK(s.weather == "cloud");
+  CHECK(to_json(scenario_from_json(to_json(s))) == to_json(s));
+  ReleaseConfig config = tiny_release_config(1, 2);
+  const Sequence sequence = make_sequence(sequence_spec(config, s));
+  CHECK(sequence.weather.preset == "cloud");
+  CHECK(sequence.weather.fog_density == 0.03);
+  CHECK(sequence.weather.sun_elevation == 4.5);
+  CHECK(sequence.weather.wind == 0.2);
+  // what the parameters leave alone is the seed's variant of the preset, as without them
+  nlohmann::json plain = foggy_dusk;
+  plain["weather"] = "cloud";
+  const Weather varied = make_sequence(sequence_spec(config, scenario_from_json(plain))).weather;
+  CHECK(sequence.weather.cloudiness == varied.cloudiness);
+  CHECK(sequence.weather.sun_azimuth == varied.sun_azimuth);
+  nlohmann::json bad = foggy_dusk;
+  bad["weather"]["fog_densty"] = 0.1;
+  CHECK_THROWS_WITH(
+      scenario_from_json(bad),
+      Catch::Contains("weather: unknown parameter \"fog_densty\" (did you mean \"fog_density\"?)"));
+  bad = foggy_dusk;
+  bad["weather"]["fog_density"] = 7;
+  CHECK_THROWS_WITH(scenario_from_json(bad),
+                    Catch::Contains("scenario: weather: ") && Catch::Contains("fog_density"));
 }
 
 TEST_CASE("a built-in map's sequence rendered from its recorded scenario has the same bytes") {

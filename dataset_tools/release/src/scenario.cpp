@@ -48,6 +48,11 @@ Vec3 vector3(const nlohmann::json& j, const std::string& what) {
 
 nlohmann::json array3(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
+nlohmann::json merged(nlohmann::json base, const nlohmann::json& over) {
+  for (const auto& [key, value] : over.items()) base[key] = value;
+  return base;
+}
+
 int map_number(const nlohmann::json& map) {
   if (map.is_number_integer()) {
     require(map.get<int>() >= 0 && map.get<int>() < kMapCount,
@@ -157,6 +162,23 @@ nlohmann::json motion_json(const Scenario& s) {
 
 }  // namespace
 
+Weather with_parameters(const Weather& weather, const nlohmann::json& parameters) {
+  const nlohmann::json record = to_json(weather);
+  std::vector<std::string> known;
+  for (const auto& [key, value] : record.items())
+    if (key != "preset") known.push_back(key);
+  for (const auto& [key, value] : parameters.items())
+    require(key == "exposure" || std::find(known.begin(), known.end(), key) != known.end(),
+            "weather: unknown parameter \"" + key + "\"" + did_you_mean(key, known));
+  nlohmann::json set = merged(record, parameters);
+  set.erase("exposure");  // what a meta.json record adds: the sky's, not a parameter
+  try {
+    return weather_from_json(set);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(std::string("scenario: weather: ") + e.what());
+  }
+}
+
 Pose RigPath::origin() const {
   Pose pose = Pose::Identity();
   const Vec3& a = origin_yaw_pitch_roll_degrees;
@@ -195,11 +217,18 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   s.pedestrians = value<int>(traffic, "pedestrians", s.pedestrians, "traffic: ");
   require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
           "traffic: vehicles + pedestrians must be in 0..200");
-  s.weather = value<std::string>(j, "weather", s.weather, "");
+  if (j.contains("weather") && j.at("weather").is_object()) {
+    s.weather_parameters = j.at("weather");
+    s.weather = value<std::string>(s.weather_parameters, "preset", s.weather, "weather: ");
+    s.weather_parameters.erase("preset");
+  } else {
+    s.weather = value<std::string>(j, "weather", s.weather, "");
+  }
   s.time_of_day = value<std::string>(j, "time_of_day", s.time_of_day, "");
   s.sky = value<std::string>(j, "sky", s.sky, "");
   try {
     weather_preset(s.weather), validate_time_of_day(s.time_of_day), validate_sky(s.sky);
+    with_parameters(weather_preset(s.weather), s.weather_parameters);
   } catch (const std::invalid_argument& e) {
     require(false, e.what());
   }
@@ -220,7 +249,9 @@ nlohmann::json to_json(const Scenario& s) {
                       {"ego", s.ego},
                       {"motion", motion_json(s)},
                       {"traffic", {{"vehicles", s.vehicles}, {"pedestrians", s.pedestrians}}},
-                      {"weather", s.weather},
+                      {"weather", s.weather_parameters.empty()
+                                      ? nlohmann::json(s.weather)
+                                      : merged({{"preset", s.weather}}, s.weather_parameters)},
                       {"time_of_day", s.time_of_day},
                       {"sky", s.sky},
                       {"frames", s.frames},

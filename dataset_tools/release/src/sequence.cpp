@@ -36,6 +36,7 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
                     config.models};
   set_actors(spec, config);
   spec.time_of_day = s.time_of_day, spec.sky = s.sky;
+  spec.weather_parameters = s.weather_parameters;
   if (s.path) {
     try {
       spec.rig_path = rig_path_track(s, release_rig(config));
@@ -143,10 +144,10 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
   city_config.duration = (spec.frames + 1) / kFrameRate;
   city_config.models = spec.models;
-  const Weather weather =
-      under_sky(at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
-                               spec.time_of_day, spec.seed),
-                spec.sky, spec.seed);
+  Weather weather = under_sky(at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
+                                             spec.time_of_day, spec.seed),
+                              spec.sky, spec.seed);
+  if (!spec.weather_parameters.empty()) weather = with_parameters(weather, spec.weather_parameters);
   city_config.actors = spec.actors;
   city_config.wet = weather.precipitation > 0;
   city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;

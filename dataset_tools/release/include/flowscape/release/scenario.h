@@ -13,6 +13,7 @@
 #include "flowscape/release/config.h"
 #include "flowscape/renderer/rig.h"
 #include "flowscape/scenes/trajectory.h"
+#include "flowscape/weather/weather.h"
 
 namespace flowscape {
 
@@ -38,6 +39,9 @@ struct Scenario {
   std::optional<RigPath> path;  // instead of the ego's route
   int vehicles = 120, pedestrians = 80;
   std::string weather = "sunny", time_of_day = "day", sky = "physical";
+  // Weather parameters set exactly (weather.h's Weather keys: "fog_density", "sun_elevation"...)
+  // over the preset as the seed, time of day and sky leave it; empty: none.
+  nlohmann::json weather_parameters = nlohmann::json::object();
   // release-wide: the scenarios of one release agree on them (the command line overrides them)
   std::string rig = "flowscape";
   std::vector<double> rig_mount;
@@ -55,6 +59,10 @@ Scenario scenario_from_json(const nlohmann::json& json, const std::filesystem::p
 nlohmann::json to_json(const Scenario& scenario);
 // A scenario file; its errors are FileErrors naming it.
 Scenario read_scenario(const std::filesystem::path& file);
+// The weather with a scenario's parameters set over it (Scenario::weather_parameters; a
+// meta.json record's "exposure" is ignored). Throws std::invalid_argument naming a bad key or
+// value.
+Weather with_parameters(const Weather& weather, const nlohmann::json& parameters);
 // For a scenario another version of the toolkit recorded: a line saying that a re-render may
 // differ in bytes; else empty.
 std::string version_warning(const Scenario& scenario);

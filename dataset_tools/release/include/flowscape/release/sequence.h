@@ -30,6 +30,8 @@ struct SequenceSpec {
   std::string time_of_day = "day";  // weather.h's at_time_of_day
   std::string sky = "physical";     // weather.h's under_sky
   PoseTrack rig_path{};  // the rig's own path (a scenario's waypoints or pose file), or empty
+  nlohmann::json weather_parameters =
+      nlohmann::json::object();  // set over the weather (scenario.h)
 };
 // The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
 // start follows from its seed, its route from the plan's `turns` or the scenario file).
