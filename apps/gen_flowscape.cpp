@@ -16,6 +16,7 @@
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
+#include "flowscape/release/sequence.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/release/writer.h"
 #include "flowscape/renderer/calibration_file.h"
@@ -299,6 +300,8 @@ int main(int argc, char** argv) {
     for (const std::string& file : scenarios)
       if (const std::string warning = version_warning(read_scenario(file)); !warning.empty())
         std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", file.c_str(), warning.c_str());
+    if (!scenarios.empty())  // their paths read and checked before anything is written
+      for (const SequencePlan& plan : plan_sequences(c)) sequence_spec(c, plan);
     if (!shard.empty()) parse_shard(shard, c);
     if (sources.demo && !out_option->count()) out = kDemoOut;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,

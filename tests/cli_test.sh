@@ -86,6 +86,10 @@ check "gen_flowscape --scenario --check plans one sequence per file" bash -c "'$
 echo '{"flowscape_scenario": 1, "wether": "rain"}' >"$work/typo.json"
 check "gen_flowscape --scenario: a misspelt key" fails_clearly 'typo.json: scenario: unknown key "wether" (did you mean "weather"?)' "$bin/gen_flowscape" --scenario "$work/typo.json" --check --out "$work/s"
 check "gen_flowscape --scenario: a missing file" fails_clearly "nothing.json" "$bin/gen_flowscape" --scenario "$work/nothing.json" --check --out "$work/s"
+printf '{"flowscape_scenario": 1, "motion": {"pose_file": "walk.txt"}}' >"$work/walk.json"
+printf '0 0 0 1.6 0 0 0 1\n0.1 1 x 1.6 0 0 0 1\n' >"$work/walk.txt"
+check "gen_flowscape --scenario: a bad pose file line" fails_clearly "walk.txt: line 2: a TUM pose is" "$bin/gen_flowscape" --scenario "$work/walk.json" --frames 2 --resolution 16 --face-size 8 --spp 1 --out "$work/walked"
+check "and nothing written" test ! -e "$work/walked"
 check "gen_flowscape --scenario: --maps refused" fails_clearly "--maps: the scenarios say which sequences the release holds" "$bin/gen_flowscape" --scenario "$examples/drone_junction.json" --maps 2 --check --out "$work/s"
 # a release's sequence exported as it rendered it (mixed ego routes: one drives, one turns)
 check "a release of a driving and a turning sequence" "$bin/gen_flowscape" --maps 1 --sequences-per-map 2 --turn-share 0.5 --frames 3 --resolution 16 --face-size 8 --spp 1 --vehicles 2 --pedestrians 2 --out "$work/mixed"
