@@ -124,6 +124,16 @@ TEST_CASE("a scenario round-trips through JSON and names what is wrong") {
   bad = drone;
   bad["motion"]["route"] = "turn";
   fails(bad, "motion: give one of");
+  bad = drone;
+  bad["models"] = {{"car", "no_such_car.glb"}};
+  fails(bad, "no_such_car.glb: no such model file");
+  bad["models"] = {{"tram", "walk.txt"}};
+  fails(bad, "models: ");
+  nlohmann::json with_model = drone;
+  with_model["models"] = {
+      {"car", "walk.txt"}};  // found beside the scenario (a file is enough here)
+  CHECK(scenario_from_json(with_model, dir.path).models.at("car") ==
+        (dir.path / "walk.txt").string());
 }
 
 TEST_CASE("weather by parameters: set exactly over the seed's preset, named when wrong") {

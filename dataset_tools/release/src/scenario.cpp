@@ -188,10 +188,11 @@ Pose RigPath::origin() const {
 }
 
 Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path& base) {
-  require_known(j,
-                {"flowscape_scenario", "name", "world", "rig", "rig_mount", "ego", "motion",
-                 "traffic", "weather", "time_of_day", "sky", "frames", "frame_rate", "generator"},
-                "");
+  require_known(
+      j,
+      {"flowscape_scenario", "name", "world", "rig", "rig_mount", "ego", "motion", "traffic",
+       "models", "weather", "time_of_day", "sky", "frames", "frame_rate", "generator"},
+      "");
   require(j.value("flowscape_scenario", 0) == kScenarioSchema,
           "\"flowscape_scenario\": " + std::to_string(kScenarioSchema) +
               " must say the schema version (this is flowscape's scenario schema " +
@@ -217,6 +218,19 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   s.pedestrians = value<int>(traffic, "pedestrians", s.pedestrians, "traffic: ");
   require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
           "traffic: vehicles + pedestrians must be in 0..200");
+  const nlohmann::json models = j.value("models", nlohmann::json::object());
+  require(models.is_object(), "\"models\" must map actor kinds to model files");
+  for (const auto& [kind, file] : models.items()) {
+    try {
+      kind_from_name(kind);
+    } catch (const std::invalid_argument& e) {
+      require(false, std::string("models: ") + e.what());
+    }
+    require(file.is_string(), "models: \"" + kind + "\" must name a model file");
+    const std::filesystem::path path = std::filesystem::absolute(base / file.get<std::string>());
+    if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");
+    s.models[kind] = path.string();
+  }
   if (j.contains("weather") && j.at("weather").is_object()) {
     s.weather_parameters = j.at("weather");
     s.weather = value<std::string>(s.weather_parameters, "preset", s.weather, "weather: ");
@@ -258,6 +272,7 @@ nlohmann::json to_json(const Scenario& s) {
                       {"frame_rate", s.frame_rate}};
   if (!s.rig_mount.empty()) j["rig_mount"] = s.rig_mount;
   if (!s.generator.empty()) j["generator"] = s.generator;
+  if (!s.models.empty()) j["models"] = s.models;
   return j;
 }
 
@@ -308,6 +323,8 @@ Scenario scenario_of(const ReleaseConfig& config, const SequencePlan& plan) {
     s.name = plan.name, s.map = plan.map, s.seed = plan.seed;
     s.route = config.ego_routes == "free" ? "free" : plan.turns ? "turn" : "drive";
     s.vehicles = config.vehicles, s.pedestrians = config.pedestrians;
+    for (const auto& [kind, file] : config.models)
+      s.models[kind] = std::filesystem::absolute(file).string();
     s.weather = plan.weather, s.time_of_day = plan.time_of_day, s.sky = plan.sky;
   }
   s.rig = config.rig, s.rig_mount = config.rig_mount, s.ego = config.ego;  // the release's

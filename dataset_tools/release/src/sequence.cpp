@@ -37,6 +37,7 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
   set_actors(spec, config);
   spec.time_of_day = s.time_of_day, spec.sky = s.sky;
   spec.weather_parameters = s.weather_parameters;
+  for (const auto& [kind, file] : s.models) spec.models[kind] = file;  // over the release's
   if (s.path) {
     try {
       spec.rig_path = rig_path_track(s, release_rig(config));

@@ -5,6 +5,7 @@
 // frames and frame rate. Every sequence of a release has one (scenario_of: a planned sequence's,
 // recorded in its meta.json), and `gen_flowscape --scenario FILE...` renders releases from them.
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -38,6 +39,9 @@ struct Scenario {
   std::string route = "drive";  // the ego's: drive, turn, free (city.h's EgoRoute)
   std::optional<RigPath> path;  // instead of the ego's route
   int vehicles = 120, pedestrians = 80;
+  // User models for actor kinds (car, truck, bus, bike, pedestrian -> a glTF or assimp file),
+  // over the release's own (--model); absolute paths.
+  std::map<std::string, std::string> models;
   std::string weather = "sunny", time_of_day = "day", sky = "physical";
   // Weather parameters set exactly (weather.h's Weather keys: "fog_density", "sun_elevation"...)
   // over the preset as the seed, time of day and sky leave it; empty: none.
