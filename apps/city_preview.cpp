@@ -95,6 +95,27 @@ std::vector<Row> planned_rows(const Options& o) {
   return rows;
 }
 
+// Colour | flow | semantics of a sequence's ERP at `frame`, colour as a release made with `config`
+// renders it; with --gltf, the scene at that time and its scene record as <name>.gltf and
+// <name>.json.
+std::vector<Image<std::uint8_t>> erp_row(const Options& o, const ReleaseConfig& config,
+                                         const Sequence& sequence, int frame,
+                                         const std::string& name) {
+  Renderer renderer(sequence.city.scene);
+  const FramePair frames = sequence.frame_pair(frame);
+  const Projection erp = Projection::equirectangular(o.height);
+  const GroundTruth gt = renderer.ground_truth(erp, frames);
+  const Image<float> color = release_color(config, sequence, renderer, erp, frame, gt);
+  if (!o.gltf_dir.empty()) {
+    std::filesystem::create_directories(o.gltf_dir);
+    const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / name;
+    export_gltf(sequence.city.scene, frames.time, base.string() + ".gltf");
+    write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
+  }
+  return {linear_to_srgb8(color.view()), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
+          semantic_to_color(gt.semantic.view())};
+}
+
 // One row of the sheet: colour | flow | semantics of map `map` in a weather preset at a time of
 // day under a sky, at the frame nearest the options' time.
 std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std::string& weather,
@@ -105,24 +126,12 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
                     o.ego_start, EgoRoute::Free, frame + 2, o.models};
   set_actors(spec, o.color);
   spec.time_of_day = time_of_day, spec.sky = sky;
-  const Sequence sequence = make_sequence(spec);
-  Renderer renderer(sequence.city.scene);
-  const FramePair frames = sequence.frame_pair(frame);
-  const Projection erp = Projection::equirectangular(o.height);
-  const GroundTruth gt = renderer.ground_truth(erp, frames);
-  const Image<float> color = release_color(o.color, sequence, renderer, erp, frame, gt);
-  Image<std::uint8_t> labelled = linear_to_srgb8(color.view());
-  cv::Mat canvas(labelled.height, labelled.width, CV_8UC3, labelled.data.data());
+  std::vector<Image<std::uint8_t>> row =
+      erp_row(o, o.color, make_sequence(spec), frame, map_name(map));
+  cv::Mat canvas(row[0].height, row[0].width, CV_8UC3, row[0].data.data());
   cv::putText(canvas, std::to_string(map) + " " + map_name(map) + " " + weather, cv::Point(6, 18),
               cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-  if (!o.gltf_dir.empty()) {
-    std::filesystem::create_directories(o.gltf_dir);
-    const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / map_name(map);
-    export_gltf(sequence.city.scene, frames.time, base.string() + ".gltf");
-    write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
-  }
-  return {std::move(labelled), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
-          semantic_to_color(gt.semantic.view())};
+  return row;
 }
 
 // The scenario of --scenario FILE or --from-release SEQUENCE_FOLDER, with the config of the
@@ -146,32 +155,19 @@ std::pair<ReleaseConfig, Scenario> chosen_scenario(const Options& o) {
   return {config, scenario};
 }
 
-// One row: colour | flow | semantics of the chosen scenario's sequence (its ERP) at the frame
-// nearest the options' time, built as its release builds it; with --gltf, its scene at that time
-// and its scene record as <name>.gltf and <name>.json.
+// One row (erp_row) of the chosen scenario's sequence at the frame nearest the options' time,
+// built as its release builds it; --gltf names its files after the scenario or the sequence.
 std::vector<Image<std::uint8_t>> render_scenario(const Options& o) {
   const auto [config, scenario] = chosen_scenario(o);
   const int frame = int(std::lround(o.time * kFrameRate));
   if (frame + 1 >= config.frames)
     throw std::invalid_argument("--time " + std::to_string(o.time) + ": the sequence has " +
                                 std::to_string(config.frames) + " frames");
-  const Sequence sequence = make_sequence(sequence_spec(config, scenario, o.scenario));
-  Renderer renderer(sequence.city.scene);
-  const FramePair frames = sequence.frame_pair(frame);
-  const Projection erp = Projection::equirectangular(o.height);
-  const GroundTruth gt = renderer.ground_truth(erp, frames);
-  const Image<float> color = release_color(config, sequence, renderer, erp, frame, gt);
-  if (!o.gltf_dir.empty()) {
-    std::filesystem::create_directories(o.gltf_dir);
-    const std::string name = o.scenario.empty()
-                                 ? std::filesystem::path(o.from_release).filename().string()
-                                 : std::filesystem::path(o.scenario).stem().string();
-    const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / name;
-    export_gltf(sequence.city.scene, frames.time, base.string() + ".gltf");
-    write_text(base.string() + ".json", to_json(sequence.city).dump(2) + "\n");
-  }
-  return {linear_to_srgb8(color.view()), flow_to_color(gt.flow.view(), gt.valid.view(), {}),
-          semantic_to_color(gt.semantic.view())};
+  const std::string name = o.scenario.empty()
+                               ? std::filesystem::path(o.from_release).filename().string()
+                               : std::filesystem::path(o.scenario).stem().string();
+  return erp_row(o, config, make_sequence(sequence_spec(config, scenario, o.scenario)), frame,
+                 name);
 }
 
 // One row per camera of a rig (the flowscape rig: its ERP), colour | flow | semantics of map

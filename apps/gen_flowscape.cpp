@@ -287,21 +287,22 @@ int main(int argc, char** argv) {
     ReleaseConfig c = resolve_config(sources);
     try {
       refuse_rig_options(given, c.rig);
-      for (const char* key : {"maps", "map_list", "sequences_per_map"})
-        if (!scenarios.empty() && given.contains(key))
-          throw std::invalid_argument(std::string(key == std::string("sequences_per_map")
-                                                      ? "--sequences-per-map"
-                                                      : "--maps") +
-                                      ": the scenarios say which sequences the release holds");
+      if (!scenarios.empty() && (given.contains("maps") || given.contains("map_list") ||
+                                 given.contains("sequences_per_map")))
+        throw std::invalid_argument(
+            std::string(given.contains("sequences_per_map") ? "--sequences-per-map" : "--maps") +
+            ": the scenarios say which sequences the release holds");
     } catch (const std::invalid_argument& e) {
       std::fprintf(diagnostics(), "gen_flowscape: error: %s (see --help)\n", e.what());
       return kUsageError;
     }
-    for (const std::string& file : scenarios)
-      if (const std::string warning = version_warning(read_scenario(file)); !warning.empty())
-        std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", file.c_str(), warning.c_str());
-    if (!scenarios.empty())  // their paths read and checked before anything is written
-      for (const SequencePlan& plan : plan_sequences(c)) sequence_spec(c, plan);
+    if (!scenarios.empty())  // each scenario's paths read and checked before anything is written
+      for (const SequencePlan& plan : plan_sequences(c)) {
+        const std::string file = plan.scenario_file.string();
+        if (const std::string warning = version_warning(read_scenario(file)); !warning.empty())
+          std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", file.c_str(), warning.c_str());
+        sequence_spec(c, plan);
+      }
     if (!shard.empty()) parse_shard(shard, c);
     if (sources.demo && !out_option->count()) out = kDemoOut;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,

@@ -6,11 +6,10 @@
 #include <stdexcept>
 
 #include "flowscape/core/names.h"
+#include "flowscape/scenes/trajectory.h"
 
 namespace flowscape {
 namespace {
-
-constexpr double kDegree = kPi / 180;
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("rig: " + what);
@@ -140,11 +139,7 @@ Pose RigCamera::mount() const {
 Mat3 look(double yaw_degrees, double pitch_degrees, double roll_degrees) {
   Mat3 forward;  // camera x right = rig -y, y down = rig -z, z forward = rig x
   forward << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return (Eigen::AngleAxisd(yaw_degrees * kDegree, Vec3::UnitZ()) *
-          Eigen::AngleAxisd(-pitch_degrees * kDegree, Vec3::UnitY()) *
-          Eigen::AngleAxisd(roll_degrees * kDegree, Vec3::UnitX()))
-             .toRotationMatrix() *
-         forward;
+  return yaw_pitch_roll(yaw_degrees, pitch_degrees, roll_degrees) * forward;
 }
 
 std::vector<std::string> rig_presets() { return {"fisheye", "woodscape", "pal", "dual-fisheye"}; }

@@ -65,7 +65,7 @@ class NaturalSpline {
   std::vector<double> t_, y_, m_;
 };
 
-Mat3 yaw_pitch_roll(double yaw, double pitch, double roll) {  // radians, rig axes
+Mat3 rotation_of(double yaw, double pitch, double roll) {  // yaw_pitch_roll's, in radians
   return (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(-pitch, Vec3::UnitY()) *
           Eigen::AngleAxisd(roll, Vec3::UnitX()))
       .toRotationMatrix();
@@ -162,6 +162,10 @@ std::vector<TimedPose> colmap(std::istream& in, double rate) {
 
 }  // namespace
 
+Mat3 yaw_pitch_roll(double yaw_degrees, double pitch_degrees, double roll_degrees) {
+  return rotation_of(yaw_degrees * kDegree, pitch_degrees * kDegree, roll_degrees * kDegree);
+}
+
 std::vector<double> waypoint_times(const std::vector<Waypoint>& waypoints) {
   require(waypoints.size() >= 2, "a path needs at least 2 waypoints");
   std::vector<double> times;
@@ -204,11 +208,11 @@ PoseTrack waypoint_track(const std::vector<Waypoint>& waypoints) {
     Pose pose = Pose::Identity();
     pose.translation() = Vec3(position[0].value(t), position[1].value(t), position[2].value(t));
     if (!angles.empty()) {
-      pose.linear() = yaw_pitch_roll(angles[0].value(t), angles[1].value(t), angles[2].value(t));
+      pose.linear() = rotation_of(angles[0].value(t), angles[1].value(t), angles[2].value(t));
     } else {
       const Vec3 v(position[0].slope(t), position[1].slope(t), position[2].slope(t));
       pose.linear() =
-          yaw_pitch_roll(std::atan2(v.y(), v.x()), std::atan2(v.z(), v.head<2>().norm()), 0);
+          rotation_of(std::atan2(v.y(), v.x()), std::atan2(v.z(), v.head<2>().norm()), 0);
     }
     return pose;
   };

@@ -182,7 +182,7 @@ Weather with_parameters(const Weather& weather, const nlohmann::json& parameters
 Pose RigPath::origin() const {
   Pose pose = Pose::Identity();
   const Vec3& a = origin_yaw_pitch_roll_degrees;
-  pose.linear() = look(a[0], a[1], a[2]) * look(0, 0, 0).transpose();  // the rig axes turned
+  pose.linear() = yaw_pitch_roll(a[0], a[1], a[2]);
   pose.translation() = origin_position;
   return pose;
 }

@@ -10,6 +10,11 @@
 
 namespace flowscape {
 
+// The turn by yaw (left, about z), then pitch (up), then roll (about the forward x axis,
+// right-handed), in the rig's axes (x forward, y left, z up): waypoints' orientation keys, a pose
+// file's origin, and renderer/rig.h's look() (which starts from the forward camera's frame).
+Mat3 yaw_pitch_roll(double yaw_degrees, double pitch_degrees, double roll_degrees);
+
 // A point a path passes: at a time (seconds from the sequence's start) or, for every point after
 // the first, reached at a speed (m/s, the mean over the chord from the point before: the time
 // between them is chord / speed), not both; optionally the rig's orientation there.
