@@ -159,7 +159,7 @@ std::pair<ReleaseConfig, Scenario> chosen_scenario(const Options& o) {
 // built as its release builds it; --gltf names its files after the scenario or the sequence.
 std::vector<Image<std::uint8_t>> render_scenario(const Options& o) {
   const auto [config, scenario] = chosen_scenario(o);
-  const int frame = int(std::lround(o.time * kFrameRate));
+  const int frame = int(std::lround(o.time * scenario.frame_rate));
   if (frame + 1 >= config.frames)
     throw std::invalid_argument("--time " + std::to_string(o.time) + ": the sequence has " +
                                 std::to_string(config.frames) + " frames");

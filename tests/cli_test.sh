@@ -91,19 +91,30 @@ printf '0 0 0 1.6 0 0 0 1\n0.1 1 x 1.6 0 0 0 1\n' >"$work/walk.txt"
 check "gen_flowscape --scenario: a bad pose file line" fails_clearly "walk.txt: line 2: a TUM pose is" "$bin/gen_flowscape" --scenario "$work/walk.json" --frames 2 --resolution 16 --face-size 8 --spp 1 --out "$work/walked"
 check "and nothing written" test ! -e "$work/walked"
 check "gen_flowscape --scenario: --maps refused" fails_clearly "--maps: the scenarios say which sequences the release holds" "$bin/gen_flowscape" --scenario "$examples/drone_junction.json" --maps 2 --check --out "$work/s"
-# a release's sequence exported as it rendered it (mixed ego routes: one drives, one turns)
-check "a release of a driving and a turning sequence" "$bin/gen_flowscape" --maps 1 --sequences-per-map 2 --turn-share 0.5 --frames 3 --resolution 16 --face-size 8 --spp 1 --vehicles 2 --pedestrians 2 --out "$work/mixed"
-for seq in map00_seq00 map00_seq01; do
-  check "city_preview --from-release $seq exports its scene" "$bin/city_preview" --from-release "$work/mixed/sequences/$seq" --time 0.034 --height 16 --spp 1 --gltf "$work/exported" -o "$work/exported.png"
+# city_preview --from-release exports a release's sequence as its meta.json recorded the city, and
+# the record passes a further Python check on `recorded`
+exports_as_recorded() {  # RELEASE SEQUENCE CHECK
+  local release="$1" seq="$2"
+  check "city_preview --from-release $seq exports its scene" "$bin/city_preview" --from-release "$release/sequences/$seq" --time 0.034 --height 16 --spp 1 --gltf "$release.exported" -o "$release.png"
   check "the exported scene record of $seq is the one meta.json recorded" /usr/bin/python3 -c "
 import json
-exported = json.load(open('$work/exported/$seq.json'))
-recorded = json.load(open('$work/mixed/sequences/$seq/meta.json'))['city']
+exported = json.load(open('$release.exported/$seq.json'))
+recorded = json.load(open('$release/sequences/$seq/meta.json'))['city']
 assert exported == recorded, [k for k in recorded if exported.get(k) != recorded[k]]
-"
-done
-check "and the two drive different routes" bash -c "! cmp -s '$work/exported/map00_seq00.json' '$work/exported/map00_seq01.json'"
+$3"
+}
+# mixed ego routes: one drives, one turns
+check "a release of a driving and a turning sequence" "$bin/gen_flowscape" --maps 1 --sequences-per-map 2 --turn-share 0.5 --frames 3 --resolution 16 --face-size 8 --spp 1 --vehicles 2 --pedestrians 2 --out "$work/mixed"
+exports_as_recorded "$work/mixed" map00_seq00 "assert recorded['ego_route'] == 'drive'"
+exports_as_recorded "$work/mixed" map00_seq01 "assert recorded['ego_route'] == 'turn'"
+check "and the two drive different routes" bash -c "! cmp -s '$work/mixed.exported/map00_seq00.json' '$work/mixed.exported/map00_seq01.json'"
 check "city_preview --scenario renders a scenario file" "$bin/city_preview" --scenario "$examples/turn_in_rain_at_dusk.json" --time 0.5 --height 16 --spp 1 -o "$work/scenario.png"
+# a user's world with scripted actors, and the lane change
+check "a release of the user-world and lane-change examples" "$bin/gen_flowscape" --scenario "$examples/user_world_square.json" "$examples/lane_change_in_rain_at_dusk.json" --rig flowscape --frames 3 --resolution 16 --face-size 8 --spp 1 --out "$work/own"
+exports_as_recorded "$work/own" map08_seq00 "assert recorded['world']['up'] == 'y', recorded.get('world')"
+exports_as_recorded "$work/own" map02_seq00 "assert recorded['ego_route'] == 'lane_change', recorded['ego_route']"
+printf '{"flowscape_scenario": 1, "world": {"file": "%s", "units": "metres", "up": "y", "classes": [["road*", "Road"]]}, "motion": {"waypoints": [{"position": [0, 9, 1.6]}, {"position": [5, 9, 1.6], "time": 9}]}}' "$(cd "$examples/../worlds" && pwd)/square.gltf" >"$work/unlabelled.json"
+check "gen_flowscape --scenario: a world part no pattern labels" fails_clearly 'square.gltf: its part "sidewalk_south" matches no class pattern (road*)' "$bin/gen_flowscape" --scenario "$work/unlabelled.json" --frames 2 --resolution 16 --face-size 8 --spp 1 --out "$work/unlabelled"
 touch "$work/a_file"
 check "gen_flowscape --check: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --frames 2 --check --out "$work/a_file"
 check "gen_flowscape: --out a file" fails_clearly "a_file: is a file, not a folder" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 32 --face-size 16 --spp 1 --out "$work/a_file"

@@ -68,8 +68,8 @@ struct DepthSum {
 
 }  // namespace
 
-Shutter centred_shutter(double time, double angle) {
-  const double open_for = angle / 360 / kFrameRate;
+Shutter centred_shutter(double time, double angle, double frame_rate) {
+  const double open_for = angle / 360 / frame_rate;
   return {time - open_for / 2, time + open_for / 2};
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -18,7 +19,8 @@ namespace flowscape {
 namespace {
 
 constexpr int kStartPoints = 110, kMaxActors = 200;
-constexpr double kFrame = 1 / kFrameRate;
+constexpr double kLaneChangeStart = 8;       // metres into its lane a lane-changing ego starts
+constexpr double kFrame = 2 * kTrafficStep;  // the ego's route is judged 2 x 1/30 s short
 const char* const kKindNames[] = {"car",        "truck", "bus",       "bike",
                                   "pedestrian", "lorry", "motorbike", "rider"};
 
@@ -90,17 +92,56 @@ bool near_the_ego(const Eigen::Vector2d& spot, const Eigen::Vector2d& ego, doubl
 }
 
 struct Spawned {
-  std::vector<VehicleStart> vehicles;  // the ego first
+  std::vector<VehicleStart> vehicles;  // the ego first, then the placed ones (ScriptedActor::start)
   std::vector<ActorKind> vehicle_kinds;
   std::vector<WalkerStart> walkers;
+  int placed = 0;
 };
+
+// The lane and the distance along it whose centre line passes nearest `at` (within half a lane).
+std::pair<int, double> nearest_lane_point(const Layout& layout, const Eigen::Vector2d& at) {
+  int lane = -1;
+  double along = 0, nearest = kLaneWidth / 2;
+  for (int l = 0; l < int(layout.lanes.size()); ++l)
+    for (double s = 0; s <= layout.lanes[l].path.length(); s += 0.25)
+      if (const double d = (layout.lanes[l].path.at(s).position - at).norm(); d < nearest)
+        lane = l, along = s, nearest = d;
+  if (lane < 0)
+    throw std::invalid_argument("an actor's start (" + std::to_string(at.x()) + ", " +
+                                std::to_string(at.y()) + ") is not within " +
+                                std::to_string(kLaneWidth / 2) + " m of a lane's centre line");
+  return {lane, along};
+}
+
+// The vehicles placed by hand with a start, after the ego, clear of it and of each other.
+void place_scripted_vehicles(const Layout& layout, const CityConfig& config, Spawned& out) {
+  for (const ScriptedActor& actor : config.scripted) {
+    if (!actor.start) continue;
+    const KindSize size = kind_size(actor.kind);
+    const auto [lane, s] = nearest_lane_point(layout, *actor.start);
+    const double length = layout.lanes[lane].path.length();
+    if (length < size.length + 2 || !clear_of(out.vehicles, lane, s, size.length))
+      throw std::invalid_argument("an actor's start (" + std::to_string(actor.start->x()) + ", " +
+                                  std::to_string(actor.start->y()) +
+                                  ") has no room: another vehicle, the ego or a junction is there");
+    const double centre = std::clamp(s, size.length / 2 + 1, length - size.length / 2 - 1);
+    out.vehicles.push_back({size.length, size.width, lane, centre, actor.speed, actor.turn});
+    out.vehicle_kinds.push_back(actor.kind);
+    ++out.placed;
+  }
+}
 
 // Whether a vehicle `length` long at s on `lane` would stand within `clear` metres ahead of the ego
 // on its way: its lane, or the first metres of a lane leaving the junction it drives into.
+// For a lane change, the lane beside the ego's from 20 m behind it on counts as its way too.
 bool in_ego_way(const Layout& layout, const StartPoint& ego, double clear, int lane, double s,
-                double length) {
+                double length, bool changing) {
   const Lane& ego_lane = layout.lanes[ego.lane];
   if (lane == ego.lane) return s + length / 2 > ego.s && s - length / 2 < ego.s + clear;
+  const Lane& other = layout.lanes[lane];
+  if (changing && other.from == ego_lane.from && other.to == ego_lane.to &&
+      std::abs(other.index - ego_lane.index) == 1)
+    return s + length / 2 > ego.s - 20 && s - length / 2 < ego.s + clear;
   const double left = clear - (ego_lane.path.length() - ego.s);
   return layout.lanes[lane].from == ego_lane.to && s - length / 2 < left;
 }
@@ -111,6 +152,8 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
   const KindSize car = kind_size(ActorKind::Car);
   out.vehicles.push_back({car.length, car.width, ego.lane, ego.s, layout.lanes[ego.lane].speed,
                           config.ego_route == EgoRoute::Turn});
+  if (config.ego_route == EgoRoute::LaneChange) out.vehicles[0].change_at = config.lane_change_at;
+  place_scripted_vehicles(layout, config, out);
   const double clear = config.ego_route == EgoRoute::Free ? 0 : kEgoClearAhead;
   const Eigen::Vector2d ego_spot = layout.lanes[ego.lane].path.at(ego.s).position;
   for (int n = 0; n < config.vehicles; ++n) {
@@ -125,7 +168,8 @@ Spawned spawn(const Layout& layout, const std::vector<SidewalkLoop>& loops, cons
       const double s = random.uniform(size.length / 2 + 1, length - size.length / 2 - 1);
       if (!near_the_ego(layout.lanes[lane].path.at(s).position, ego_spot, 30, attempt, random) ||
           !clear_of(out.vehicles, lane, s, size.length) ||
-          (clear > 0 && in_ego_way(layout, ego, clear, lane, s, size.length)))
+          (clear > 0 && in_ego_way(layout, ego, clear, lane, s, size.length,
+                                   config.ego_route == EgoRoute::LaneChange)))
         continue;
       out.vehicles.push_back({size.length, size.width, lane, s, wish});
       out.vehicle_kinds.push_back(kind);
@@ -206,24 +250,83 @@ void park_cars(const Layout& layout, std::uint64_t seed, City& city,
   }
 }
 
+Mesh user_model(ActorKind kind, const std::string& path, Scene& scene) {
+  Material material;
+  material.kind = kind == ActorKind::Pedestrian ? Material::Kind::Diffuse : Material::Kind::Glossy;
+  material.albedo = {0.5f, 0.45f, 0.4f};
+  const SemanticClass cls =
+      kind == ActorKind::Pedestrian ? SemanticClass::Pedestrian : SemanticClass::Vehicles;
+  return load_model(path, cls, kind_size(kind).length, scene, material);
+}
+
 std::map<ActorKind, Mesh> user_models(const CityConfig& config, Scene& scene) {
   std::map<ActorKind, Mesh> models;
   for (const auto& [name, path] : config.models) {
     const ActorKind kind = kind_from_name(name);
-    Material material;
-    material.kind =
-        kind == ActorKind::Pedestrian ? Material::Kind::Diffuse : Material::Kind::Glossy;
-    material.albedo = {0.5f, 0.45f, 0.4f};
-    const SemanticClass cls =
-        kind == ActorKind::Pedestrian ? SemanticClass::Pedestrian : SemanticClass::Vehicles;
-    models[kind] = load_model(path, cls, kind_size(kind).length, scene, material);
+    models[kind] = user_model(kind, path, scene);
   }
   return models;
+}
+
+// A scripted actor's waypoints sampled as the traffic's tracks are, for `duration` and a frame.
+Track scripted_track(const std::vector<Waypoint>& waypoints, double duration) {
+  const PoseTrack path = waypoint_track(waypoints);
+  const std::vector<double> times = waypoint_times(waypoints);
+  Track track{kTrafficStep, {}, {}};
+  double travelled = 0;
+  for (int n = 0; n * kTrafficStep <= duration + kFrame; ++n) {
+    const Pose pose = path(std::clamp(n * kTrafficStep, times.front(), times.back()));
+    if (n > 0) travelled += (pose.translation() - track.poses.back().translation()).norm();
+    track.poses.push_back(pose), track.distance.push_back(travelled);
+  }
+  return track;
+}
+
+std::string format_seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g s", seconds);
+  return text;
+}
+
+// Whether another lane runs beside `lane` the same way (a lane change can go there).
+bool has_lane_beside(const Layout& layout, int lane) {
+  const Lane& a = layout.lanes[lane];
+  return std::any_of(layout.lanes.begin(), layout.lanes.end(), [&](const Lane& b) {
+    return b.from == a.from && b.to == a.to && std::abs(b.index - a.index) == 1;
+  });
+}
+
+// Whether a lane change can be made on `lane` from a start 8 m in: another lane beside it, and
+// room to drive until lane_change_at and change at the lane's speed before its end.
+bool lane_change_fits(const Layout& layout, int lane, double change_at) {
+  const double speed = layout.lanes[lane].speed;
+  return has_lane_beside(layout, lane) &&
+         layout.lanes[lane].path.length() >= kLaneChangeStart + change_at * speed +
+                                                 std::max(kChangeMinimum, kChangeSeconds * speed) +
+                                                 kChangeEndMargin;
+}
+
+// The start of try k for a lane change: kLaneChangeStart into the lane of the k-th start point
+// on a lane where one fits.
+StartPoint lane_change_start(const Layout& layout, const std::vector<StartPoint>& points,
+                             const CityConfig& config, int k) {
+  std::vector<const StartPoint*> usable;
+  for (std::size_t n = 0; n < 100; ++n) {
+    const StartPoint& point = points.at((std::size_t(config.ego_start) + n) % 100);
+    if (lane_change_fits(layout, point.lane, config.lane_change_at)) usable.push_back(&point);
+  }
+  if (usable.empty())
+    throw std::invalid_argument("map " + map_name(config.map) +
+                                " has no road of two lanes one way long enough for a lane change "
+                                "at " +
+                                format_seconds(config.lane_change_at));
+  return start_at(layout, usable[std::size_t(37 * k) % usable.size()]->lane, kLaneChangeStart);
 }
 
 // The ego's start on its try k (EgoRoute).
 StartPoint ego_start_of_try(const Layout& layout, const std::vector<StartPoint>& points,
                             const CityConfig& config, int k) {
+  if (config.ego_route == EgoRoute::LaneChange) return lane_change_start(layout, points, config, k);
   const StartPoint& point = points.at(std::size_t((config.ego_start + 37 * k) % 100));
   if (config.ego_route != EgoRoute::Turn) return point;
   const Lane& lane = layout.lanes[point.lane];
@@ -234,10 +337,12 @@ StartPoint ego_start_of_try(const Layout& layout, const std::vector<StartPoint>&
 
 // How near a try's ego track comes to what its route asks by `until` seconds: 1 for driving at
 // kEgoSpeedShare of its lane's speed on average (less in proportion), plus, for Turn, 1 for
-// turning by kEgoTurnDegrees.
-double ego_score(const Track& track, double lane_speed, double until, EgoRoute route) {
+// turning by kEgoTurnDegrees, for LaneChange 1 for changing lanes.
+double ego_score(const Track& track, int lane_changes, double lane_speed, double until,
+                 EgoRoute route) {
   const double speed = track.distance_at(until) / until;
   double score = std::min(1.0, speed / (kEgoSpeedShare * lane_speed));
+  if (route == EgoRoute::LaneChange) return score + (lane_changes > 0 ? 1 : 0);
   if (route != EgoRoute::Turn) return score;
   double turned = 0;
   for (double t = 0; t <= until; t += track.step)
@@ -259,7 +364,8 @@ struct PlacedTraffic {
 PlacedTraffic place_traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
                             const std::vector<StartPoint>& points, const CityConfig& config) {
   const int tries = config.ego_route == EgoRoute::Free ? 1 : kEgoTries;
-  const double full_score = config.ego_route == EgoRoute::Turn ? 2 : 1;
+  const double full_score =
+      config.ego_route == EgoRoute::Turn || config.ego_route == EgoRoute::LaneChange ? 2 : 1;
   PlacedTraffic best;
   double best_score = -1;
   for (int k = 0; k < tries; ++k) {
@@ -269,9 +375,9 @@ PlacedTraffic place_traffic(const Layout& layout, const std::vector<SidewalkLoop
     now.spawned = spawn(layout, loops, now.ego, config, now.random);
     now.tracks = simulate_traffic(layout, loops, now.spawned.vehicles, now.spawned.walkers,
                                   config.duration, config.seed);
-    const double score =
-        ego_score(now.tracks.vehicles[0], layout.lanes[now.ego.lane].speed,
-                  std::max(kFrame, config.duration - 2 * kFrame), config.ego_route);
+    const double score = ego_score(
+        now.tracks.vehicles[0], now.tracks.lane_changes[0], layout.lanes[now.ego.lane].speed,
+        std::max(kFrame, config.duration - 2 * kFrame), config.ego_route);
     if (score > best_score) best = std::move(now), best_score = score;
     best.tries = k + 1;
     if (best_score >= full_score) break;
@@ -282,16 +388,18 @@ PlacedTraffic place_traffic(const Layout& layout, const std::vector<SidewalkLoop
 }  // namespace
 
 std::string route_name(EgoRoute route) {
-  return route == EgoRoute::Free ? "free" : route == EgoRoute::Drive ? "drive" : "turn";
+  static const char* const kNames[] = {"free", "drive", "turn", "lane_change"};
+  return kNames[int(route)];
 }
 
 EgoRoute route_from_name(const std::string& name) {
-  for (EgoRoute route : {EgoRoute::Free, EgoRoute::Drive, EgoRoute::Turn})
+  for (EgoRoute route : {EgoRoute::Free, EgoRoute::Drive, EgoRoute::Turn, EgoRoute::LaneChange})
     if (name == route_name(route)) return route;
-  throw std::invalid_argument("unknown ego route \"" + name + "\" (free, drive or turn)");
+  throw std::invalid_argument("unknown ego route \"" + name +
+                              "\" (free, drive, turn or lane_change)");
 }
 
-std::string map_name(int map) { return style_of(map).name; }
+std::string map_name(int map) { return map == kUserWorldMap ? "user_world" : style_of(map).name; }
 
 std::vector<std::string> asset_pack_names() { return {"torcs"}; }
 
@@ -356,7 +464,26 @@ ActorKind kind_from_name(const std::string& name) {
 }
 
 void validate(const CityConfig& c) {
-  style_of(c.map);
+  if (c.world && c.map != kUserWorldMap)
+    throw std::invalid_argument("a world file stands for map " + std::to_string(kUserWorldMap) +
+                                ", not map " + std::to_string(c.map));
+  if (!c.world) style_of(c.map);
+  if (c.world && (c.vehicles > 0 || c.pedestrians > 0 || c.draw_ego))
+    throw std::invalid_argument(
+        "a user world has no roads: no traffic and no ego vehicle (its actors are scripted, its "
+        "rig follows a path of its own)");
+  if (!c.scripted.empty() && c.actors == ActorStyle::Legacy)
+    throw std::invalid_argument("scripted actors need detailed actors (not legacy)");
+  for (const ScriptedActor& a : c.scripted) {
+    if (!a.start) {
+      waypoint_times(a.waypoints);
+      continue;
+    }
+    if (c.world || a.kind == ActorKind::Pedestrian || !(a.speed > 0 && a.speed <= 60))
+      throw std::invalid_argument(
+          "an actor given a start drives on a map's roads: a vehicle, in a built-in map, at a "
+          "speed in (0, 60] m/s");
+  }
   if (c.vehicles < 0 || c.pedestrians < 0)
     throw std::invalid_argument("vehicle and pedestrian counts must not be negative");
   if (c.vehicles + c.pedestrians > kMaxActors)
@@ -365,6 +492,8 @@ void validate(const CityConfig& c) {
                                 std::to_string(c.vehicles + c.pedestrians));
   if (c.ego_start < 0 || c.ego_start >= 100)
     throw std::invalid_argument("ego start " + std::to_string(c.ego_start) + " is not in 0..99");
+  if (!(c.lane_change_at >= 0 && c.lane_change_at <= 3600))
+    throw std::invalid_argument("lane_change_at must be in [0, 3600] seconds");
   if (!(c.duration > 0 && c.duration <= 3600))
     throw std::invalid_argument("duration must be in (0, 3600] seconds");
   for (const std::string& pack : c.asset_packs) asset_pack(pack);
@@ -461,9 +590,8 @@ class PackModels {
 // The detailed actors: traffic (two-wheelers with their riders), walkers (one in eight of those in
 // groups a child), the parked cars and the ego vehicle, instances in that order.
 void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
-                         const std::vector<Pose>& parked, City& city) {
+                         const std::vector<Pose>& parked, ActorLibrary& library, City& city) {
   const CityConfig& config = city.config;
-  ActorLibrary library(city.scene, config.seed, config.wet);
   const Spawned& spawned = traffic.spawned;
   const auto next = [&] { return std::uint16_t(city.scene.actors.size() + 1); };
   const auto add = [&](std::vector<Actor> actors, ActorRecord record) {
@@ -485,11 +613,24 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     add(library.vehicle(kind, record.instance, std::move(track), user_model_of(models, kind)),
         record);
   };
+  std::vector<const ScriptedActor*> placed;  // in spawn order
+  for (const ScriptedActor& actor : config.scripted)
+    if (actor.start) placed.push_back(&actor);
   for (std::size_t v = 1; v < spawned.vehicles.size(); ++v) {
     const VehicleStart& start = spawned.vehicles[v];
     const ActorKind kind = spawned.vehicle_kinds[v - 1];
-    vehicle(kind, std::make_shared<const Track>(traffic.tracks.vehicles[v]),
-            {next(), kind, start.lane, start.s, start.speed});
+    const auto track = std::make_shared<const Track>(traffic.tracks.vehicles[v]);
+    ActorRecord record{next(), kind, start.lane, start.s, start.speed};
+    if (v > placed.size()) {
+      vehicle(kind, track, record);
+      continue;
+    }
+    record.scripted = true;
+    const std::string& file = placed[v - 1]->model;
+    const std::optional<Mesh> own =
+        file.empty() ? std::nullopt : std::optional(user_model(kind, file, city.scene));
+    add(library.vehicle(kind, record.instance, track, own ? &*own : user_model_of(models, kind)),
+        record);
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
@@ -522,17 +663,67 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
                      config.ego_cameras)},
         record);
   }
-  // the head lamps of every vehicle but the parked ones (walkers and riders have none)
+}
+
+// The actors scripted by waypoints (CityConfig::scripted), after all others, each with its rider if
+// it has one.
+void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& library,
+                         City& city) {
+  for (const ScriptedActor& scripted : city.config.scripted) {
+    if (scripted.start) continue;  // driving with the traffic: add_detailed_actors adds it
+    const auto track =
+        std::make_shared<const Track>(scripted_track(scripted.waypoints, city.config.duration));
+    const std::vector<double> times = waypoint_times(scripted.waypoints);
+    const double speed = track->distance.back() / (times.back() - times.front());
+    std::optional<Mesh> own;
+    if (!scripted.model.empty()) own = user_model(scripted.kind, scripted.model, city.scene);
+    const Mesh* model = own ? &*own : user_model_of(models, scripted.kind);
+    auto instance = std::uint16_t(city.scene.actors.size() + 1);
+    const std::vector<Actor> actors =
+        scripted.kind == ActorKind::Pedestrian
+            ? std::vector<Actor>{library.pedestrian(instance, track, speed, false, model)}
+            : library.vehicle(scripted.kind, instance, track, model);
+    ActorKind kind = scripted.kind;
+    for (const Actor& actor : actors) {
+      ActorRecord record{instance++, kind, -1, 0, speed};
+      record.scripted = true;
+      city.actors.push_back(record);
+      city.scene.actors.push_back(actor);
+      kind = ActorKind::Rider;
+    }
+  }
+}
+
+// The head lamps of every vehicle but the parked ones (walkers and riders have none).
+void add_head_lamps(const ActorLibrary& library, City& city) {
   for (std::size_t a = 0; a < city.scene.actors.size(); ++a)
     if (!city.actors[a].parked)
       for (const Lamp& beam : library.head_lamps(city.scene.actors[a], int(a)))
         city.scene.lamps.push_back(beam);
 }
 
+// A city of a user's world model: its static world and scripted actors, no roads and no traffic.
+City make_world_city(const CityConfig& config) {
+  City city;
+  city.config = config;
+  city.scene.world = load_world(*config.world, city.scene);
+  city.area_at = [](const Eigen::Vector2d&) { return Area::Outside; };
+  city.ground_height = [](const Eigen::Vector2d&) { return 0.0; };
+  city.ego_spawn = {-1, 0, Pose::Identity()};
+  city.ego = fixed_pose();
+  city.ego_distance = [](double) { return 0.0; };
+  city.mount = random_mount(config.seed);
+  ActorLibrary library(city.scene, config.seed, config.wet);
+  add_scripted_actors(user_models(config, city.scene), library, city);
+  add_head_lamps(library, city);
+  return city;
+}
+
 }  // namespace
 
 City make_city(const CityConfig& config) {
   validate(config);
+  if (config.world) return make_world_city(config);
   auto layout = std::make_shared<const Layout>(make_layout(config.map, config.seed));
   City city;
   city.config = config;
@@ -557,10 +748,14 @@ City make_city(const CityConfig& config) {
   city.ego = [ego](double t) { return ego->pose(t); };
   city.ego_distance = [ego](double t) { return ego->distance_at(t); };
   city.mount = random_mount(config.seed);
-  if (legacy)
+  if (legacy) {
     add_legacy_actors(traffic, models, traffic.random, city);
-  else
-    add_detailed_actors(traffic, models, parked, city);
+    return city;
+  }
+  ActorLibrary library(city.scene, config.seed, config.wet);
+  add_detailed_actors(traffic, models, parked, library, city);
+  add_scripted_actors(models, library, city);
+  add_head_lamps(library, city);
   return city;
 }
 
@@ -575,6 +770,7 @@ nlohmann::json to_json(const City& city) {
                              {"speed", a.speed}};
     if (a.parked) record["parked"] = true;
     if (a.ego) record["ego"] = true;
+    if (a.scripted) record["scripted"] = true;
     if (!a.model.empty()) record["model"] = a.model;
     actors.push_back(record);
   }
@@ -592,9 +788,14 @@ nlohmann::json to_json(const City& city) {
                            {"ego", {{"lane", ego.lane}, {"s", ego.s}, {"tries", city.ego_tries}}},
                            {"start_points", city.start_points.size()},
                            {"actors", actors}};
+  if (c.ego_route == EgoRoute::LaneChange) record["lane_change_at"] = c.lane_change_at;
   if (c.actors == ActorStyle::Legacy) return record;  // the records of flowscape 0.9, unchanged
   record["actor_style"] = style_name(c.actors);
   if (!c.asset_packs.empty()) record["asset_packs"] = c.asset_packs;
+  if (c.world)
+    record["world"] = {{"file", c.world->path},
+                       {"metres_per_unit", c.world->metres_per_unit},
+                       {"up", c.world->z_up ? "z" : "y"}};
   record["wet"] = c.wet;
   record["ego"]["drawn"] = c.draw_ego;
   record["ego"]["instance"] = city.ego_instance;
@@ -606,6 +807,12 @@ nlohmann::json to_json(const City& city) {
 
 CityConfig config_from_json(const nlohmann::json& record) {
   CityConfig c;
+  const nlohmann::json actors = record.value("actors", nlohmann::json::array());
+  if (record.contains("world") ||
+      std::any_of(actors.begin(), actors.end(), [](auto& a) { return a.value("scripted", false); }))
+    throw std::invalid_argument(
+        "scene record: a scenario's city (a user world or scripted actors) is rebuilt from its "
+        "scenario (meta.json \"scenario\"; city_preview --from-release)");
   try {
     c.map = record.at("map").get<int>();
     c.seed = record.at("seed").get<std::uint64_t>();
@@ -613,6 +820,7 @@ CityConfig config_from_json(const nlohmann::json& record) {
     c.pedestrians = record.at("pedestrians").get<int>();
     c.ego_start = record.value("ego_start", 0);
     c.ego_route = route_from_name(record.value("ego_route", "free"));
+    c.lane_change_at = record.value("lane_change_at", 1.0);
     c.duration = record.value("duration", 4.0);
     c.models = record.value("models", std::map<std::string, std::string>{});
     c.actors = style_from_name(record.value("actor_style", "legacy"));

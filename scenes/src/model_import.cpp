@@ -4,11 +4,13 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fnmatch.h>
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <map>
 
 #include "flowscape/core/files.h"
@@ -52,8 +54,18 @@ std::string decoded_uri(const std::string& uri) {
   return out;
 }
 
-// What import collects: the mesh in the file's frame and its attributes' availability.
+// How a file is read: the class of each of its named parts (a node's or mesh's name) and whether
+// its up axis is z (ours) rather than y (glTF's, and most other formats').
+struct Reading {
+  std::function<SemanticClass(const std::string& name)> class_of;
+  bool z_up = false;
+  bool world = false;  // a world holds still: animations and skins are refused
+  Eigen::Vector3d axes(const V3& v) const { return z_up ? v : from_y_up(v); }
+};
+
+// What import collects: the mesh in our axes and its attributes' availability.
 struct Imported {
+  Reading reading;
   Mesh mesh;
   bool normals = true, uvs = false, tangents = true;  // every part had them
 };
@@ -68,14 +80,15 @@ void add_part(Imported& out, const std::vector<V3>& positions, const std::vector
   out.uvs = out.uvs || !uvs.empty();
   out.tangents = out.tangents && tangents.size() == positions.size();
   for (std::size_t v = 0; v < positions.size(); ++v) {
-    out.mesh.vertices.push_back(from_y_up(positions[v]).cast<float>());
+    out.mesh.vertices.push_back(out.reading.axes(positions[v]).cast<float>());
     out.mesh.normals.push_back(
-        v < normals.size() ? Eigen::Vector3f(from_y_up(normals[v]).normalized().cast<float>())
-                           : Eigen::Vector3f::Zero());
+        v < normals.size()
+            ? Eigen::Vector3f(out.reading.axes(normals[v]).normalized().cast<float>())
+            : Eigen::Vector3f::Zero());
     out.mesh.uvs.push_back(v < uvs.size() ? Eigen::Vector2f(uvs[v].cast<float>())
                                           : Eigen::Vector2f::Zero());
     const Eigen::Vector4d t = v < tangents.size() ? tangents[v] : Eigen::Vector4d::Zero();
-    const Eigen::Vector3d turned = from_y_up(t.head<3>());
+    const Eigen::Vector3d turned = out.reading.axes(t.head<3>());
     out.mesh.tangents.emplace_back(float(turned.x()), float(turned.y()), float(turned.z()),
                                    float(t.w()));
   }
@@ -161,14 +174,28 @@ std::vector<Eigen::Matrix<double, N, 1>> gltf_attribute(const tinygltf::Model& m
   return values;
 }
 
-Mesh load_gltf(const std::string& path, SemanticClass cls, Scene& scene, std::uint16_t fallback) {
+// A world holds still: moving parts belong in actors.
+void refuse_motion(bool animations, bool skins, const std::string& path) {
+  if (animations) fail(path, "holds animations: a world model is static (script actors instead)");
+  if (skins) fail(path, "holds skins: a world model is static (script actors instead)");
+}
+
+Mesh load_gltf(const std::string& path, const Reading& reading, Scene& scene,
+               std::uint16_t fallback) {
   const tinygltf::Model model = read_gltf(path);
+  if (reading.world)
+    refuse_motion(!model.animations.empty(),
+                  !model.skins.empty() || std::any_of(model.nodes.begin(), model.nodes.end(),
+                                                      [](auto& n) { return n.skin >= 0; }),
+                  path);
   std::map<int, std::uint16_t> materials;  // glTF material -> scene material
-  Imported out;
+  Imported out{reading, {}};
   for_each_node(model, path, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
     if (node.mesh < 0) return;
     if (node.mesh >= int(model.meshes.size()))
       fail(path, "node " + node.name + " refers to a mesh the file lacks");
+    const SemanticClass cls =
+        reading.class_of(node.name.empty() ? model.meshes[node.mesh].name : node.name);
     const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>(),
                           normal_matrix = linear.inverse().transpose();
     for (const tinygltf::Primitive& primitive : model.meshes[node.mesh].primitives) {
@@ -244,49 +271,97 @@ Material assimp_material(const aiScene* scene, const aiMaterial* m, const std::s
   return out;
 }
 
-Mesh load_with_assimp(const std::string& path, SemanticClass cls, Scene& scene,
+// One assimp mesh of class `cls`, placed by `transform` (its node's, in the file's frame; null: as
+// it is, for a file whose vertices are pre-transformed).
+void add_assimp_mesh(Imported& out, const aiScene* file, const aiMesh* source,
+                     const Eigen::Matrix4d* transform, SemanticClass cls,
+                     std::map<unsigned, std::uint16_t>& materials, Scene& scene,
+                     std::uint16_t fallback, const std::string& path) {
+  std::vector<V3> positions, normals;
+  std::vector<Eigen::Vector2d> uvs;
+  std::vector<Eigen::Vector4d> tangents;
+  for (unsigned v = 0; v < source->mNumVertices; ++v) {
+    const aiVector3D& p = source->mVertices[v];
+    positions.emplace_back(p.x, p.y, p.z);
+    if (source->HasNormals())
+      normals.emplace_back(source->mNormals[v].x, source->mNormals[v].y, source->mNormals[v].z);
+    if (source->HasTextureCoords(0))
+      uvs.emplace_back(source->mTextureCoords[0][v].x, source->mTextureCoords[0][v].y);
+    if (source->HasTangentsAndBitangents() && source->HasNormals()) {
+      const V3 t(source->mTangents[v].x, source->mTangents[v].y, source->mTangents[v].z),
+          b(source->mBitangents[v].x, source->mBitangents[v].y, source->mBitangents[v].z);
+      tangents.emplace_back(t.x(), t.y(), t.z(), normals.back().cross(t).dot(b) < 0 ? -1 : 1);
+    }
+  }
+  if (transform) {
+    const Eigen::Matrix3d linear = transform->topLeftCorner<3, 3>(),
+                          normal_matrix = linear.inverse().transpose();
+    for (V3& p : positions) p = (*transform * p.homogeneous()).head<3>();
+    for (V3& n : normals) n = normal_matrix * n;
+    for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
+  }
+  std::vector<int> indices;
+  for (unsigned f = 0; f < source->mNumFaces; ++f)
+    if (source->mFaces[f].mNumIndices == 3)
+      for (int c = 0; c < 3; ++c) indices.push_back(int(source->mFaces[f].mIndices[c]));
+  std::uint16_t material = fallback;
+  if (source->mMaterialIndex < file->mNumMaterials) {
+    auto [it, added] = materials.emplace(source->mMaterialIndex, 0);
+    if (added)
+      it->second = add_material(
+          scene, assimp_material(file, file->mMaterials[source->mMaterialIndex], path));
+    material = it->second;
+  }
+  add_part(out, positions, normals, uvs, tangents, indices, material, cls, path);
+}
+
+// Every node under `node` with its transform to the file's root.
+void walk_assimp_nodes(const aiNode* node, const Eigen::Matrix4d& parent,
+                       const std::function<void(const aiNode*, const Eigen::Matrix4d&)>& visit) {
+  Eigen::Matrix4d local;
+  const aiMatrix4x4& m = node->mTransformation;
+  local << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
+      m.d4;
+  const Eigen::Matrix4d transform = parent * local;
+  visit(node, transform);
+  for (unsigned k = 0; k < node->mNumChildren; ++k)
+    walk_assimp_nodes(node->mChildren[k], transform, visit);
+}
+
+// A model's meshes come pre-transformed (one per material); a world's are walked node by node,
+// each named by its node (an OBJ object or group), and refused when the file moves.
+Mesh load_with_assimp(const std::string& path, const Reading& reading, Scene& scene,
                       std::uint16_t fallback) {
   Assimp::Importer importer;
   // uvs with their origin at the image's top-left corner, like glTF's and the texture lookups'
-  const aiScene* file = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_PreTransformVertices | aiProcess_CalcTangentSpace | aiProcess_FlipUVs);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                         aiProcess_CalcTangentSpace | aiProcess_FlipUVs;
+  const aiScene* file =
+      importer.ReadFile(path, reading.world ? flags : flags | aiProcess_PreTransformVertices);
   if (!file || (file->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
   std::map<unsigned, std::uint16_t> materials;
-  Imported out;
-  for (unsigned k = 0; k < file->mNumMeshes; ++k) {
-    const aiMesh* source = file->mMeshes[k];
-    std::vector<V3> positions, normals;
-    std::vector<Eigen::Vector2d> uvs;
-    std::vector<Eigen::Vector4d> tangents;
-    for (unsigned v = 0; v < source->mNumVertices; ++v) {
-      const aiVector3D& p = source->mVertices[v];
-      positions.emplace_back(p.x, p.y, p.z);
-      if (source->HasNormals())
-        normals.emplace_back(source->mNormals[v].x, source->mNormals[v].y, source->mNormals[v].z);
-      if (source->HasTextureCoords(0))
-        uvs.emplace_back(source->mTextureCoords[0][v].x, source->mTextureCoords[0][v].y);
-      if (source->HasTangentsAndBitangents() && source->HasNormals()) {
-        const V3 t(source->mTangents[v].x, source->mTangents[v].y, source->mTangents[v].z),
-            b(source->mBitangents[v].x, source->mBitangents[v].y, source->mBitangents[v].z);
-        tangents.emplace_back(t.x(), t.y(), t.z(), normals.back().cross(t).dot(b) < 0 ? -1 : 1);
-      }
-    }
-    std::vector<int> indices;
-    for (unsigned f = 0; f < source->mNumFaces; ++f)
-      if (source->mFaces[f].mNumIndices == 3)
-        for (int c = 0; c < 3; ++c) indices.push_back(int(source->mFaces[f].mIndices[c]));
-    std::uint16_t material = fallback;
-    if (source->mMaterialIndex < file->mNumMaterials) {
-      auto [it, added] = materials.emplace(source->mMaterialIndex, 0);
-      if (added)
-        it->second = add_material(
-            scene, assimp_material(file, file->mMaterials[source->mMaterialIndex], path));
-      material = it->second;
-    }
-    add_part(out, positions, normals, uvs, tangents, indices, material, cls, path);
+  Imported out{reading, {}};
+  if (!reading.world) {
+    for (unsigned k = 0; k < file->mNumMeshes; ++k)
+      add_assimp_mesh(out, file, file->mMeshes[k], nullptr, reading.class_of(""), materials, scene,
+                      fallback, path);
+    return finished(std::move(out));
   }
+  refuse_motion(file->mNumAnimations > 0,
+                std::any_of(file->mMeshes, file->mMeshes + file->mNumMeshes,
+                            [](const aiMesh* m) { return m->HasBones(); }),
+                path);
+  walk_assimp_nodes(file->mRootNode, Eigen::Matrix4d::Identity(),
+                    [&](const aiNode* node, const Eigen::Matrix4d& transform) {
+                      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+                        const aiMesh* mesh = file->mMeshes[node->mMeshes[k]];
+                        const std::string name =
+                            node->mName.length > 0 ? node->mName.C_Str() : mesh->mName.C_Str();
+                        add_assimp_mesh(out, file, mesh, &transform, reading.class_of(name),
+                                        materials, scene, fallback, path);
+                      }
+                    });
   return finished(std::move(out));
 }
 
@@ -297,15 +372,49 @@ std::string texture_cache_dir() {
   return (fs::temp_directory_path() / "flowscape-textures").string();
 }
 
+SemanticClass world_class(const WorldModel& world, const std::string& name) {
+  std::string patterns;
+  for (const WorldClass& c : world.classes) {
+    if (fnmatch(c.pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0) return c.cls;
+    patterns += (patterns.empty() ? "" : ", ") + c.pattern;
+  }
+  fail(world.path, "its part \"" + name + "\" matches no class pattern (" + patterns +
+                       "): add one (\"*\" takes the rest)");
+}
+
+Mesh load_world(const WorldModel& world, Scene& scene) {
+  const std::string& path = world.path;
+  if (!fs::is_regular_file(path)) fail(path, "no such world file");
+  if (!(world.metres_per_unit > 0) || !std::isfinite(world.metres_per_unit))
+    fail(path, "metres per unit must be positive");
+  if (world.classes.empty()) fail(path, "a world needs classes: name patterns and their classes");
+  const Reading reading{[&](const std::string& name) { return world_class(world, name); },
+                        world.z_up, true};
+  Material fallback;
+  fallback.albedo = {0.5f, 0.5f, 0.5f};
+  const std::uint16_t fallback_material = add_material(scene, fallback);
+  const std::string extension = fs::path(path).extension().string();
+  Mesh mesh = extension == ".gltf" || extension == ".glb"
+                  ? load_gltf(path, reading, scene, fallback_material)
+                  : load_with_assimp(path, reading, scene, fallback_material);
+  if (mesh.triangles.empty()) fail(path, "the world has no triangles");
+  for (Eigen::Vector3f& v : mesh.vertices) {
+    v *= float(world.metres_per_unit);
+    if (!v.allFinite()) fail(path, "a vertex is not finite");
+  }
+  return mesh;
+}
+
 Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
                 const Material& fallback, const Mat3& turn) {
   if (!fs::is_regular_file(path)) fail(path, "no such model file");
   if (!(length > 0)) fail(path, "model length must be positive");
   const std::string extension = fs::path(path).extension().string();
   const std::uint16_t fallback_material = add_material(scene, fallback);
+  const Reading reading{[cls](const std::string&) { return cls; }, false, false};
   Mesh mesh = extension == ".gltf" || extension == ".glb"
-                  ? load_gltf(path, cls, scene, fallback_material)
-                  : load_with_assimp(path, cls, scene, fallback_material);
+                  ? load_gltf(path, reading, scene, fallback_material)
+                  : load_with_assimp(path, reading, scene, fallback_material);
   if (mesh.triangles.empty()) fail(path, "the model has no triangles");
   const Eigen::Matrix3f r = turn.cast<float>();
   for (Eigen::Vector3f& v : mesh.vertices) v = r * v;

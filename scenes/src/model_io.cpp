@@ -1,9 +1,12 @@
 // Whole scenes to glTF with their classes, and back.
 #include "flowscape/scenes/model_io.h"
 
+#include <strings.h>
+
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "flowscape/core/files.h"
 #include "flowscape/scenes/skinning.h"
@@ -52,6 +55,16 @@ std::string class_name(SemanticClass cls) {
       "Car",          "Truck",    "Bus",      "Motorcycle", "Bicycle",    "EgoVehicle"};
   const int id = int(cls);
   return id < int(std::size(kNames)) ? kNames[id] : "class" + std::to_string(id);
+}
+
+SemanticClass class_from_name(const std::string& name) {
+  std::string known;
+  for (int id = 0; id < kSceneClasses; ++id) {
+    const std::string candidate = class_name(SemanticClass(id));
+    if (strcasecmp(candidate.c_str(), name.c_str()) == 0) return SemanticClass(id);
+    known += (id ? ", " : "") + candidate;
+  }
+  throw std::invalid_argument("unknown class \"" + name + "\" (one of " + known + ")");
 }
 
 void export_gltf(const Scene& scene, double t, const std::string& path) {

@@ -13,17 +13,16 @@ namespace flowscape {
 namespace {
 
 using V2 = Eigen::Vector2d;
-constexpr double kFrame = 1 / kFrameRate, kStep = kFrame / 2;  // two simulation steps per frame
+constexpr double kStep = kTrafficStep, kFrame = 2 * kStep;  // tracks reach a frame (1/30 s) past
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Vehicles: gaps and headway, acceleration, the braking they plan with (behind a leader, before a
 // stop line; before a curve more gently) and the lateral acceleration they accept in curves.
 constexpr double kStandstill = 2.0, kHeadway = 1.0, kAcceleration = 2.5;
 constexpr double kBraking = 3.0, kCurveBraking = 2.0, kLateral = 3.0, kLookAhead = 250;
 constexpr double kLightCycle = 8.0, kApproach = 25.0, kSample = 0.5;
-// Lane changes: over 3 s at the speed when it starts (at least 20 m), no faster until it is done
-// (lateral acceleration at most 3.5 * 5.77 / 3^2 = 2.2 m/s^2), done 12 m before the lane's end;
-// without a slow leader a vehicle changes lanes at random this often (per second).
-constexpr double kChangeSeconds = 3.0, kChangeMinimum = 20.0, kChangeRate = 0.05;
+// Lane changes (traffic.h: kChangeSeconds, kChangeMinimum, kChangeEndMargin): without a slow
+// leader a vehicle changes lanes at random this often (per second).
+constexpr double kChangeRate = 0.05;
 // Walkers: body length along the way, gap, headway, acceleration; how close to the kerb they ask
 // to cross, and how far a vehicle's way must keep from a crosswalk with walkers on it.
 constexpr double kBody = 0.6, kWalkGap = 0.6, kWalkHeadway = 0.8, kWalkAcceleration = 1.0;
@@ -123,6 +122,8 @@ struct Vehicle {
   int held = -1;                         // the junction it may cross (or is leaving), or -1
   bool in_junction = false;
   bool turn_next = false;  // its next junction's way must turn (VehicleStart::turn)
+  double change_at = -1;   // VehicleStart::change_at
+  int changes = 0;         // lane changes begun
   double s = 0, speed = 0, travelled = 0;
   // How far its body reaches sideways from its connector: half its width plus the swing of its
   // ends in the tightest curve (chord offset L^2 k / 8).
@@ -174,7 +175,7 @@ class Traffic {
       Vehicle v;
       v.length = start.length, v.width = start.width;
       v.wish = std::min(start.speed, layout.lanes[start.lane].speed);
-      v.lane = start.lane, v.s = start.s, v.turn_next = start.turn;
+      v.lane = start.lane, v.s = start.s, v.turn_next = start.turn, v.change_at = start.change_at;
       choose_next(v);
       vehicles_.push_back(std::move(v));
     }
@@ -185,7 +186,7 @@ class Traffic {
   }
 
   void step(double t) {
-    change_lanes();
+    change_lanes(t);
     grant(t);
     let_walkers_cross(t);
     std::vector<double> speeds(vehicles_.size()), paces(walkers_.size());
@@ -205,6 +206,7 @@ class Traffic {
     return ground_pose(layout_, v.in_junction ? v.connector->path.at(v.s) : lane_point(v), 0);
   }
   double travelled(int i) const { return vehicles_[i].travelled; }
+  int lane_changes(int i) const { return vehicles_[i].changes; }
   Pose walker_pose(int i) const {
     const Walker& w = walkers_[i];
     const SidewalkLoop& loop = loops_[w.loop];
@@ -276,24 +278,27 @@ class Traffic {
 
   // Changes lanes on multi-lane roads: to pass a leader slower than it wishes to drive (where the
   // other lane moves faster), else now and then at random; never near the lane's end, while
-  // holding a junction, or where the other lane has no room.
-  void change_lanes() {
+  // holding a junction, or where the other lane has no room. One asked to change (change_at) does
+  // so as soon as it may, into either lane beside it, and makes no other change.
+  void change_lanes(double t) {
     for (int i = 0; i < int(vehicles_.size()); ++i) {
       Vehicle& v = vehicles_[i];
       if (v.in_junction || v.held >= 0 || v.change_from >= 0 || parallel_[v.lane].empty()) continue;
       const double length = std::max(kChangeMinimum, kChangeSeconds * v.speed);
-      if (v.s < 2 || lane_length(v.lane) - v.s < length + 12) continue;
+      if (v.s < 2 || lane_length(v.lane) - v.s < length + kChangeEndMargin) continue;
       const int leader = neighbours(i, v.lane).first;
       const bool held_up =
           leader >= 0 && body_gap(i, leader, v.lane) < 40 && vehicles_[leader].speed < v.wish - 2;
       const bool whim = random_.chance(kChangeRate * kStep);
-      if (!held_up && !whim) continue;
+      const bool scripted = v.change_at >= 0, asked = scripted && t >= v.change_at && !v.changes;
+      if (scripted ? !asked : !held_up && !whim) continue;
       for (const int other : parallel_[v.lane]) {
         const int other_leader = neighbours(i, other).first;
         const bool faster =
             other_leader < 0 || body_gap(i, other_leader, other) > 60 ||
             vehicles_[other_leader].speed > vehicles_[leader < 0 ? i : leader].speed + 1;
-        if ((held_up && !faster) || !room_to_change(i, other)) continue;
+        if ((held_up && !faster && !asked) || !room_to_change(i, other)) continue;
+        ++v.changes;
         v.change_from = v.lane, v.lane = other, v.change_start = v.s, v.change_length = length;
         choose_next(v);
         break;
@@ -648,7 +653,8 @@ TrafficTracks simulate_traffic(const Layout& layout, const std::vector<SidewalkL
                                std::uint64_t seed) {
   Traffic traffic(layout, loops, vehicles, walkers, seed);
   TrafficTracks tracks{std::vector<Track>(vehicles.size(), Track{kStep, {}, {}}),
-                       std::vector<Track>(walkers.size(), Track{kStep, {}, {}})};
+                       std::vector<Track>(walkers.size(), Track{kStep, {}, {}}),
+                       std::vector<int>(vehicles.size(), 0)};
   const int samples = sample_count(duration);
   for (int n = 0; n < samples; ++n) {
     if (n > 0) traffic.step(n * kStep);
@@ -661,6 +667,8 @@ TrafficTracks simulate_traffic(const Layout& layout, const std::vector<SidewalkL
       tracks.walkers[i].distance.push_back(traffic.walked(int(i)));
     }
   }
+  for (std::size_t i = 0; i < vehicles.size(); ++i)
+    tracks.lane_changes[i] = traffic.lane_changes(int(i));
   return tracks;
 }
 

@@ -12,6 +12,11 @@
 
 namespace flowscape {
 
+inline constexpr double kTrafficStep = 1.0 / 60;  // seconds per simulation step
+// Lane changes: over 3 s at the speed when it starts (at least 20 m), no faster until it is done
+// (lateral acceleration at most 3.5 * 5.77 / 3^2 = 2.2 m/s^2), done 12 m before the lane's end.
+inline constexpr double kChangeSeconds = 3.0, kChangeMinimum = 20.0, kChangeEndMargin = 12.0;
+
 // Sampled motion of one actor at a fixed step: pose and distance travelled (for wheels and gait).
 struct Track {
   double step = 0;
@@ -27,6 +32,9 @@ struct VehicleStart {
   double s;           // centre, metres along the lane
   double speed;       // wish speed, m/s (capped by the lane's)
   bool turn = false;  // at the first junction it turns (left or right) where it can
+  // From this time on (seconds; negative: never) it changes into a lane beside its own as soon as
+  // there is room, once, and no other change is made on a whim.
+  double change_at = -1;
 };
 
 struct WalkerStart {
@@ -39,11 +47,13 @@ Pose ground_pose(const Layout& layout, const PathPoint& p, double lift);
 
 struct TrafficTracks {
   std::vector<Track> vehicles, walkers;  // in the order of their starts
+  std::vector<int> lane_changes;         // per vehicle: the lane changes it began
 };
 
-// Tracks sampled every 1/60 s from 0 to `duration` (plus one frame). Walkers cross at a crosswalk
-// when its signal lets them (the road they cross has red; roundabouts: always) and no vehicle
-// that may cross the junction passes it; vehicles are not let across a crosswalk with walkers.
+// Tracks sampled every kTrafficStep from 0 to `duration` (plus one frame). Walkers cross at a
+// crosswalk when its signal lets them (the road they cross has red; roundabouts: always) and no
+// vehicle that may cross the junction passes it; vehicles are not let across a crosswalk with
+// walkers.
 TrafficTracks simulate_traffic(const Layout& layout, const std::vector<SidewalkLoop>& loops,
                                const std::vector<VehicleStart>& vehicles,
                                const std::vector<WalkerStart>& walkers, double duration,

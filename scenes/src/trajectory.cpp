@@ -141,11 +141,12 @@ std::vector<TimedPose> colmap(std::istream& in, double rate) {
   std::string text;
   bool points_line = false;
   for (int line = 1; std::getline(in, text); ++line) {
-    if (text.empty() || text[0] == '#') continue;
-    if (points_line) {
+    if (!text.empty() && text[0] == '#') continue;
+    if (points_line) {  // empty for an image without points, as COLMAP writes it
       points_line = false;
       continue;
     }
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
     std::istringstream words(text);
     double id, qw, qx, qy, qz, tx, ty, tz, camera;
     std::string name;

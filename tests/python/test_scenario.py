@@ -44,3 +44,20 @@ def test_a_preview_and_a_bad_scenario(tmp_path):
         sc.preview({**turn, "wether": "rain"})
     with pytest.raises(ValueError, match="the sequence has 4 frames"):
         sc.preview(turn, frame=9, height=16)
+
+
+def test_a_user_world_with_scripted_actors_at_its_own_frame_rate(tmp_path):
+    square = os.path.join(os.path.dirname(__file__), "../../examples/worlds/square.gltf")
+    world = {"file": square, "units": "metres", "up": "y",
+             "classes": [["road*", "Road"], ["*", "Building"]]}
+    walk = [{"position": [-6, 9, 1.6], "time": 0}, {"position": [0, 7.5, 1.6], "time": 4}]
+    car = {"kind": "car", "waypoints": [{"position": [-30, -2, 0]},
+                                        {"position": [30, -2, 0], "speed": 9}]}
+    s = sc.scenario(world_file=world, waypoints=walk, actors=[car], frames=2, frame_rate=10,
+                    name="square")
+    assert s["traffic"] == {"vehicles": 0, "pedestrians": 0}
+    image = sc.preview(s, frame=0, height=16, spp=1)
+    assert image.shape == (16, 32, 3) and image.max() > 0
+    with pytest.raises(ValueError, match="matches no class pattern"):
+        sc.preview(sc.scenario(world_file={**world, "classes": [["road*", "Road"]]},
+                               waypoints=walk, frames=2))

@@ -1,9 +1,13 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <fstream>
+#include <iomanip>
+#include <set>
 
 #include "../temp_dir.h"
 #include "flowscape/core/files.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
@@ -110,8 +114,11 @@ TEST_CASE("a scenario round-trips through JSON and names what is wrong") {
   bad["world"]["map"] = "downton";
   fails(bad, "no map \"downton\" (did you mean \"downtown\"?)");
   bad = drone;
-  bad["frame_rate"] = 25;
-  fails(bad, "\"frame_rate\": sequences are rendered at 30 frames per second");
+  bad["frame_rate"] = 0;
+  fails(bad, "\"frame_rate\" must be in 1..240");
+  bad = drone;
+  bad["motion"] = {{"route", "drive"}, {"lane_change_at", 2}};
+  fails(bad, "\"lane_change_at\" is for the lane_change route");
   bad = drone;
   bad.erase("flowscape_scenario");
   fails(bad, "must say the schema version");
@@ -195,7 +202,9 @@ TEST_CASE("a built-in map's sequence rendered from its recorded scenario has the
   }
 }
 
-TEST_CASE("a rig's own path: waypoints flown and a TUM file replayed, poses as meta.json records") {
+TEST_CASE(
+    "a rig's own path: waypoints flown, TUM, KITTI and COLMAP files replayed, as meta.json "
+    "records") {
   TempDir dir;
   const nlohmann::json drone = {{"flowscape_scenario", 1},
                                 {"world", {{"map", "downtown"}, {"seed", 3}}},
@@ -209,7 +218,10 @@ TEST_CASE("a rig's own path: waypoints flown and a TUM file replayed, poses as m
                                 {"frames", 3}};
   const fs::path drone_file = write_json(dir.path / "drone.json", drone);
   // a handheld camera's TUM file, its poses at the frame times, given for the fisheye's own frame
-  std::ofstream tum(dir.path / "walk.txt");
+  // the same as KITTI's 3 x 4 camera -> world rows at 30 Hz, and COLMAP's world -> camera
+  // quaternion (w first) and translation, ordered by image name
+  std::ofstream tum(dir.path / "walk.txt"), kitti(dir.path / "kitti.txt"),
+      colmap(dir.path / "images.txt");
   std::vector<Pose> camera_poses;
   char line[300];
   for (int k = 0; k < 4; ++k) {
@@ -223,14 +235,32 @@ TEST_CASE("a rig's own path: waypoints flown and a TUM file replayed, poses as m
                   pose.translation().x(), pose.translation().y(), pose.translation().z(), q.x(),
                   q.y(), q.z(), q.w());
     tum << line;
+    for (int i = 0; i < 12; ++i)
+      kitti << (i ? " " : "") << std::setprecision(17) << pose.matrix()(i / 4, i % 4);
+    kitti << "\n";
+    const Pose inverse = pose.inverse();
+    const Eigen::Quaterniond w(inverse.linear());
+    std::snprintf(line, sizeof line,
+                  "%d %.17g %.17g %.17g %.17g %.17g %.17g %.17g 1 img_%d.png\n\n", k + 1, w.w(),
+                  w.x(), w.y(), w.z(), inverse.translation().x(), inverse.translation().y(),
+                  inverse.translation().z(), k);
+    colmap << line;
   }
-  tum.close();
+  tum.close(), kitti.close(), colmap.close();
   nlohmann::json walk = drone;
   walk["motion"] = {{"pose_file", "walk.txt"}, {"poses_of", "front"}};
   walk["world"]["map"] = "suburb";
   const fs::path walk_file = write_json(dir.path / "walk.json", walk);
+  std::vector<fs::path> files = {drone_file, walk_file};
+  for (const char* format : {"kitti", "colmap"}) {
+    walk["motion"] = {{"pose_file", format == std::string("kitti") ? "kitti.txt" : "images.txt"},
+                      {"format", format},
+                      {"rate", 30},
+                      {"poses_of", "front"}};
+    files.push_back(write_json(dir.path / (std::string(format) + ".json"), walk));
+  }
 
-  ReleaseConfig config = scenario_release({drone_file, walk_file});
+  ReleaseConfig config = scenario_release(files);
   config.vehicles = 4, config.pedestrians = 2;
   write_release(config, dir.path / "out", false);
   const SequenceMeta flown = read_meta(sequence_dir(dir.path / "out", "map00_seq00"));
@@ -241,18 +271,118 @@ TEST_CASE("a rig's own path: waypoints flown and a TUM file replayed, poses as m
     CHECK(angle_between(flown.poses[f].linear(), path(f / 30.0).linear()) < 1e-9);
   }
   CHECK((flown.poses[0].translation() - Vec3(0, 0, 20)).norm() < 1e-3);  // waypoint 0 at t = 0
-  // the fisheye's poses in meta.json are the file's
-  const SequenceMeta walked = read_meta(sequence_dir(dir.path / "out", "map01_seq00"));
-  const nlohmann::json& view = walked.views.at("cameras/front");
-  for (int f = 0; f < 3; ++f) {
-    const Pose recorded = from_row_major(view.at("poses")[f]);
-    CHECK((recorded.translation() - camera_poses[f].translation()).norm() < 1e-9);
-    CHECK(angle_between(recorded.linear(), camera_poses[f].linear()) < 1e-9);
+  // the fisheye's poses in meta.json are the file's, in all three formats
+  for (const char* sequence : {"map01_seq00", "map01_seq01", "map01_seq02"}) {
+    INFO(sequence);
+    const SequenceMeta walked = read_meta(sequence_dir(dir.path / "out", sequence));
+    const nlohmann::json& view = walked.views.at("cameras/front");
+    for (int f = 0; f < 3; ++f) {
+      const Pose recorded = from_row_major(view.at("poses")[f]);
+      CHECK((recorded.translation() - camera_poses[f].translation()).norm() < 1e-9);
+      CHECK(angle_between(recorded.linear(), camera_poses[f].linear()) < 1e-9);
+    }
+    CHECK(walked.scenario.at("motion").at("poses_of") == "front");
   }
-  CHECK(walked.scenario.at("motion").at("poses_of") == "front");
   // a path shorter than the sequence is named
   ReleaseConfig longer = config;
   longer.frames = 60;
   CHECK_THROWS_WITH(write_release(longer, dir.path / "long", false),
                     Catch::Contains("drone.json: scenario: the waypoints end at 0.1"));
+}
+
+TEST_CASE("a user's world with its classes, scripted actors and a frame rate of the scenario's") {
+  TempDir dir;
+  const fs::path square = fs::path(FLOWSCAPE_SOURCE_DIR) / "examples/worlds/square.gltf";
+  const nlohmann::json user = {
+      {"flowscape_scenario", 1},
+      {"name", "square"},
+      {"world",
+       {{"file", square.string()},
+        {"units", "metres"},
+        {"up", "y"},
+        {"seed", 3},
+        {"classes", nlohmann::json::array({nlohmann::json::array({"road*", "Road"}),
+                                           nlohmann::json::array({"sidewalk*", "SideWalk"}),
+                                           nlohmann::json::array({"building*", "Building"}),
+                                           nlohmann::json::array({"tree*", "vegetation"}),
+                                           nlohmann::json::array({"*", "Terrain"})})}}},
+      {"motion",
+       {{"waypoints",
+         {{{"position", {-6, 9, 1.6}}, {"time", 0}}, {{"position", {0, 7.5, 1.6}}, {"time", 4}}}}}},
+      {"actors",
+       {{{"kind", "car"},
+         {"waypoints", {{{"position", {-30, -2, 0}}}, {{"position", {30, -2, 0}}, {"speed", 10}}}}},
+        {{"kind", "pedestrian"},
+         {"waypoints",
+          {{{"position", {8, 6, 0.12}}}, {{"position", {-6, 6, 0.12}}, {"speed", 1.4}}}}}}},
+      {"frame_rate", 10},
+      {"frames", 3}};
+  const Scenario s = scenario_from_json(user);
+  CHECK(s.map == kUserWorldMap);
+  CHECK(to_json(scenario_from_json(to_json(s))) == to_json(s));
+  ReleaseConfig config = scenario_release({write_json(dir.path / "square.json", user)});
+  config.height = 32, config.cube = false;
+  write_release(config, dir.path / "out", false);
+  const fs::path seq = sequence_dir(dir.path / "out", "map08_seq00");
+  const SequenceMeta meta = read_meta(seq);
+  CHECK(meta.map_name == "user_world");
+  CHECK(meta.fps == 10);
+  // two waypoints: a straight line at constant speed, frame f at f / 10 s
+  for (int f = 0; f < 3; ++f)
+    CHECK((meta.poses[f].translation() - Vec3(-6 + 6 * f / 40.0, 9 - 1.5 * f / 40.0, 1.6)).norm() <
+          1e-9);
+  // the car covers 10 m/s x 0.1 s between frames, the walker 0.14 m
+  std::map<std::string, nlohmann::json> scripted;
+  for (const nlohmann::json& actor : meta.actors)
+    if (actor.value("scripted", false)) scripted[actor.at("kind")] = actor;
+  REQUIRE(scripted.size() == 2);
+  for (const auto& [kind, step] :
+       {std::pair<std::string, double>{"car", 1.0}, {"pedestrian", -0.14}})
+    for (int f = 0; f < 2; ++f) {
+      const nlohmann::json& centre = scripted[kind].at("centre_fixed");
+      CHECK(centre[f + 1][0].get<double>() - centre[f][0].get<double>() ==
+            Approx(step).margin(1e-5));
+      CHECK(centre[f + 1][1].get<double>() == Approx(centre[f][1].get<double>()).margin(1e-5));
+    }
+  // the world's classes, as the patterns give them, in the ERP's semantics
+  std::set<int> seen;
+  const Image<std::uint8_t> semantic =
+      read_image<std::uint8_t>(seq / frame_file(output_kind("semantic"), std::nullopt, 0));
+  for (std::uint8_t id : semantic.data) seen.insert(id);
+  for (const SemanticClass cls :
+       {SemanticClass::Road, SemanticClass::SideWalk, SemanticClass::Building,
+        SemanticClass::Vegetation, SemanticClass::Sky, SemanticClass::Vehicles})
+    CHECK(seen.count(int(cls)) == 1);
+
+  // what a user world refuses, one line each
+  const auto fails = [&](nlohmann::json j, const std::string& says) {
+    CHECK_THROWS_WITH(scenario_from_json(j), Catch::Contains(says));
+  };
+  nlohmann::json bad = user;
+  bad["world"].erase("units");
+  fails(bad, "a world file needs its \"units\"");
+  bad = user;
+  bad["world"]["units"] = "metre";
+  fails(bad, "\"metre\" is not metres, centimetres");
+  bad = user;
+  bad["world"]["classes"] = nlohmann::json::array({nlohmann::json::array({"road*", "Rood"})});
+  fails(bad, "world classes 0: unknown class \"Rood\"");
+  bad = user;
+  bad["traffic"] = {{"vehicles", 4}};
+  fails(bad, "a world file has no roads or sidewalks for traffic");
+  bad = user;
+  bad["motion"] = {{"route", "drive"}};
+  fails(bad, "a world file has no roads for an ego vehicle");
+  bad = user;
+  bad["actors"][0]["model"] = "missing.glb";
+  fails(bad, "missing.glb: no such model file");
+  bad = user;
+  bad["actors"][1]["kind"] = "rider";
+  fails(bad, "actor 1: a rider comes with its bike");
+  bad = user;
+  bad["actors"][0]["waypoints"] = {{{"position", {0, 0, 0}}}};
+  fails(bad, "actor 0: a path needs at least 2 waypoints");
+  bad = user;
+  bad["frame_rate"] = 500;
+  fails(bad, "\"frame_rate\" must be in 1..240");
 }

@@ -586,3 +586,88 @@ TEST_CASE("the ego's route: Turn turns it at a junction, Drive keeps its way cle
   }
   CHECK(drive_speed > free_speed);
 }
+
+TEST_CASE("the ego's lane change: on its lane until asked, then exactly one lane's width across") {
+  // Lanes are straight between junctions: until lane_change_at the ego keeps its start's line;
+  // once back on its road's heading after the change it is 3.5 m (a lane's width) to its side.
+  int maps_with_two_lanes = 0;
+  for (int map = 0; map < kMapCount; ++map) {
+    CityConfig config = busy(map);
+    config.duration = 241 * kFrame, config.ego_route = EgoRoute::LaneChange;
+    config.lane_change_at = 1.5;
+    INFO("map " << map_name(map));
+    City city;
+    try {
+      city = make_city(config);
+    } catch (const std::invalid_argument& e) {
+      CHECK_THAT(e.what(), Catch::Contains("long enough for a lane change at 1.5"));
+      continue;
+    }
+    ++maps_with_two_lanes;
+    const Pose start = city.ego(0);
+    const auto across = [&](double t) {  // metres to the start's left, off its line
+      return (city.ego(t).translation() - start.translation()).dot(start.linear().col(1));
+    };
+    const auto on_heading = [&](double t) {
+      return std::abs(std::remainder(yaw(city.ego(t)) - yaw(start), 2 * kPi)) < 1e-9;
+    };
+    for (int f = 0; f * kFrame < 1.5; ++f) CHECK(std::abs(across(f * kFrame)) < 1e-6);
+    bool changed = false, left_line = false;  // back on its heading after leaving it
+    for (int f = 0; f <= 240 && !changed; ++f) {
+      const double t = f * kFrame;
+      if (!on_heading(t)) {
+        left_line = true;
+      } else if (left_line) {
+        CHECK(std::abs(across(t)) == Approx(3.5).margin(1e-6));
+        changed = true;
+      }
+    }
+    CHECK(changed);
+    const nlohmann::json record = to_json(city);
+    CHECK(record["ego_route"] == "lane_change");
+    CHECK(record["lane_change_at"] == 1.5);
+  }
+  CHECK(maps_with_two_lanes >= 2);
+}
+
+TEST_CASE(
+    "actors placed one by one: a vehicle from a start with the traffic, a walker by waypoints") {
+  CityConfig config = busy(2);
+  config.duration = 121 * kFrame, config.actors = ActorStyle::Detailed;
+  const City plain = make_city(config);
+  const Vec3 spot = plain.start_points[7].pose.translation();
+  const Vec3 side = plain.start_points[7].pose.linear().col(1);
+  ScriptedActor car{ActorKind::Car, "", {}, Eigen::Vector2d((spot + 0.5 * side).head<2>()), 6.0};
+  ScriptedActor walker{ActorKind::Pedestrian, "", {}};
+  walker.waypoints = {{Vec3(spot.x(), spot.y(), 0), 0.0, {}, {}},
+                      {Vec3(spot.x() + 5, spot.y(), 0), {}, 1.25, {}}};
+  config.scripted = {car, walker};
+  const City city = make_city(config);
+  std::vector<std::size_t> scripted;
+  for (std::size_t a = 0; a < city.actors.size(); ++a)
+    if (city.actors[a].scripted) scripted.push_back(a);
+  REQUIRE(scripted.size() == 2);
+  const Actor& driven = city.scene.actors[scripted[0]];
+  const Actor& walked = city.scene.actors[scripted[1]];
+  CHECK(city.actors[scripted[0]].kind == ActorKind::Car);
+  CHECK(walked.instance == city.scene.actors.size());  // waypoint actors come last
+  // the car starts on the start point's lane line, 0.5 m from the spot given, and keeps to 6 m/s
+  CHECK((driven.pose(0).translation() - spot).head<2>().norm() < 0.3);
+  double most = 0;
+  for (int f = 0; f < 120; ++f)
+    most = std::max(
+        most, (driven.pose((f + 1) * kFrame).translation() - driven.pose(f * kFrame).translation())
+                      .norm() /
+                  kFrame);
+  CHECK(most <= 6 + 1e-6);
+  CHECK(most > 1);
+  // the walker: 5 m at 1.25 m/s, there at 4 s and standing after
+  CHECK((walked.pose(2).translation() - Vec3(spot.x() + 2.5, spot.y(), 0)).norm() < 1e-3);
+  CHECK((walked.pose(4).translation() - Vec3(spot.x() + 5, spot.y(), 0)).norm() < 1e-3);
+  // a start off the roads, or on the ego, is refused by name
+  config.scripted = {car};
+  config.scripted[0].start = Eigen::Vector2d(1e4, 1e4);
+  CHECK_THROWS_WITH(make_city(config), Catch::Contains("is not within 1.75"));
+  config.scripted[0].start = city.ego(0).translation().head<2>();
+  CHECK_THROWS_WITH(make_city(config), Catch::Contains("has no room"));
+}

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -138,4 +139,107 @@ TEST_CASE("hostile glTF files are refused with the file named, never walked fore
                }
              }),
              Catch::Contains("too large for an actor model"));
+}
+
+namespace {
+
+// Triangles per class and the extent of each class's vertices.
+struct ClassCount {
+  int triangles = 0;
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(1e9f), hi = -lo;
+};
+std::map<SemanticClass, ClassCount> class_counts(const Mesh& mesh) {
+  std::map<SemanticClass, ClassCount> counts;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    ClassCount& c = counts[mesh.classes[t]];
+    ++c.triangles;
+    for (int k = 0; k < 3; ++k) {
+      c.lo = c.lo.cwiseMin(mesh.vertices[mesh.triangles[t][k]]);
+      c.hi = c.hi.cwiseMax(mesh.vertices[mesh.triangles[t][k]]);
+    }
+  }
+  return counts;
+}
+
+const std::vector<WorldClass> kSquareClasses = {
+    {"road*", SemanticClass::Road},       {"SIDEWALK*", SemanticClass::SideWalk},
+    {"lawn*", SemanticClass::Terrain},    {"building*", SemanticClass::Building},
+    {"tree*", SemanticClass::Vegetation}, {"pole*", SemanticClass::Pole},
+    {"ground*", SemanticClass::Terrain}};
+
+}  // namespace
+
+TEST_CASE("a user's glTF world gets its classes from name patterns, in metres, z up") {
+  const std::string square = fs::path(FLOWSCAPE_SOURCE_DIR) / "examples/worlds/square.gltf";
+  Scene scene;
+  const Mesh world = load_world({square, 1, false, kSquareClasses}, scene);
+  // what make_square.py builds: a road quad, two sidewalks of top and kerb, a lawn and the ground,
+  // 9 boxes of houses, 6 trees (a 12-sided cone and a box trunk), 6 lamp poles
+  auto counts = class_counts(world);
+  CHECK(counts[SemanticClass::Road].triangles == 2);
+  CHECK(counts[SemanticClass::SideWalk].triangles == 8);
+  CHECK(counts[SemanticClass::Terrain].triangles == 4);
+  CHECK(counts[SemanticClass::Building].triangles == 9 * 12);
+  CHECK(counts[SemanticClass::Vegetation].triangles == 6 * (24 + 12));
+  CHECK(counts[SemanticClass::Pole].triangles == 6 * 12);
+  CHECK(counts.size() == 6);
+  // the road from (-40, -4, 0) to (40, 4, 0) in our frame (the file has y up)
+  CHECK(counts[SemanticClass::Road].lo.isApprox(Eigen::Vector3f(-40, -4, 0)));
+  CHECK(counts[SemanticClass::Road].hi.isApprox(Eigen::Vector3f(40, 4, 0)));
+  CHECK(counts[SemanticClass::Building].hi.z() == Approx(18));  // the tallest house
+  // the same file said to be in centimetres
+  Scene small_scene;
+  counts = class_counts(load_world({square, 0.01, false, kSquareClasses}, small_scene));
+  CHECK(counts[SemanticClass::Road].hi.isApprox(Eigen::Vector3f(0.4f, 0.04f, 0)));
+}
+
+TEST_CASE("an OBJ world with z up; unmatched names, animations and skins refused by name") {
+  TempDir dir;
+  const fs::path obj = dir.path / "yard.obj";
+  std::ofstream(obj) << "o road_a\nv 0 0 0\nv 10 0 0\nv 10 5 0\nf 1 2 3\n"
+                        "o shed_b\nv 0 0 0\nv 1 0 0\nv 1 0 7\nf 4 5 6\n";
+  const std::vector<WorldClass> classes = {{"road*", SemanticClass::Road},
+                                           {"*", SemanticClass::Building}};
+  Scene scene;
+  const auto counts = class_counts(load_world({obj.string(), 1, true, classes}, scene));
+  REQUIRE(counts.size() == 2);
+  CHECK(counts.at(SemanticClass::Road).hi.isApprox(Eigen::Vector3f(10, 5, 0)));  // flat, z up
+  CHECK(counts.at(SemanticClass::Building).hi.z() == Approx(7));
+  // read as y up, the shed lies along x and stands 0 high... and its 7 m go forward
+  Scene y_up;
+  const auto lying = class_counts(load_world({obj.string(), 1, false, classes}, y_up));
+  CHECK(lying.at(SemanticClass::Building).hi.x() == Approx(7));
+
+  CHECK_THROWS_WITH(load_world({obj.string(), 1, true, {{"road*", SemanticClass::Road}}}, scene),
+                    Catch::Contains("yard.obj: its part \"shed_b\" matches no class pattern "
+                                    "(road*)"));
+  CHECK_THROWS_WITH(load_world({obj.string(), 1, true, {}}, scene),
+                    Catch::Contains("yard.obj: a world needs classes"));
+  CHECK_THROWS_WITH(load_world({obj.string(), 0, true, classes}, scene),
+                    Catch::Contains("metres per unit must be positive"));
+  CHECK_THROWS_WITH(load_world({(dir.path / "none.glb").string(), 1, false, classes}, scene),
+                    Catch::Contains("none.glb: no such world file"));
+  const auto gltf_error = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json gltf = triangle_gltf();
+    change(gltf);
+    const fs::path file = dir.path / "moving.gltf";
+    std::ofstream(file) << gltf.dump();
+    try {
+      load_world({file.string(), 1, false, classes}, scene);
+    } catch (const FileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  CHECK(gltf_error([](auto&) {}) == "loaded");
+  CHECK_THAT(gltf_error([](auto& j) {
+               j["animations"] = {
+                   {{"channels", nlohmann::json::array()}, {"samplers", nlohmann::json::array()}}};
+             }),
+             Catch::Contains("moving.gltf: holds animations: a world model is static"));
+  CHECK_THAT(gltf_error([](auto& j) {
+               j["skins"] = {{{"joints", {1}}}};
+               j["nodes"][0]["skin"] = 0;
+             }),
+             Catch::Contains("moving.gltf: holds skins"));
 }

@@ -12,6 +12,7 @@
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/preview.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/model_io.h"
@@ -78,9 +79,15 @@ std::string with_unit(double bytes) {
   return text.str();
 }
 
+std::string rates_text(const std::vector<double>& rates) {
+  std::ostringstream text;
+  for (std::size_t k = 0; k < rates.size(); ++k) text << (k ? ", " : "") << rates[k];
+  return text.str() + (rates.size() > 1 ? " (per sequence: meta.json fps)" : "");
+}
+
 void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::path& out) {
   md << "\n## Sizes\n\n- ERP: " << c.height << " x " << 2 * c.height << " (H x W), " << c.frames
-     << " frames at " << kFrameRate << " Hz\n";
+     << " frames at " << rates_text(release_frame_rates(c)) << " Hz\n";
   if (c.cube)
     md << "- cube: six 90-degree faces (front right back left up down), " << c.face_size << " x "
        << c.face_size << ", focal " << c.face_size / 2.0
@@ -165,7 +172,7 @@ void conventions_section(std::ostringstream& md, const ReleaseConfig& c) {
   md << "\n## Conventions\n\nAs `" << kManifestFile
      << "` states them for programs (`conventions`); each kind's `step` in its `layout` says which "
         "frame a flow goes to.\n\n```json\n"
-     << conventions_json(c.classes).dump(1) << "\n```\n";
+     << conventions_json(c.classes, release_frame_rates(c)).dump(1) << "\n```\n";
 }
 
 void classes_section(std::ostringstream& md, const ReleaseConfig& c) {

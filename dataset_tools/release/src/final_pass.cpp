@@ -24,8 +24,8 @@ SensorModel release_sensor(const ReleaseConfig& c) {
   return sensor;
 }
 
-Shutter frame_shutter(const ReleaseConfig& config, int frame) {
-  return centred_shutter(Sequence::time(frame), config.shutter_angle);
+Shutter frame_shutter(const ReleaseConfig& config, const Sequence& sequence, int frame) {
+  return centred_shutter(sequence.time(frame), config.shutter_angle, sequence.spec.frame_rate);
 }
 
 Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
@@ -39,16 +39,16 @@ Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
         for (int c = 0; c < 3; ++c)
           covered.push_back(float(srgb8_to_linear(clean.pixel(x, y)[c]) * scale));
   const ImageView<const float> nits{int(covered.size() / 3), 1, 3, covered.data()};
-  const Shutter shutter = frame_shutter(config, frame);
-  return auto_exposure(release_sensor(config), previous, key_luminance(nits), 1 / kFrameRate,
-                       shutter.close - shutter.open);
+  const Shutter shutter = frame_shutter(config, sequence, frame);
+  return auto_exposure(release_sensor(config), previous, key_luminance(nits),
+                       1 / sequence.spec.frame_rate, shutter.close - shutter.open);
 }
 
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
                          const Projection& camera, const CameraTrack& track, int frame,
                          const Readout& readout) {
   const RenderOptions options = sequence.color_options(config, frame);
-  const Shutter shutter = frame_shutter(config, frame);
+  const Shutter shutter = frame_shutter(config, sequence, frame);
   const ColorLayers layers = shutter_layers(renderer, camera, shutter, track, options, readout);
   const Image<float> depth =
       config.denoise == "atrous"
@@ -62,7 +62,7 @@ Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& seque
                               Renderer& renderer, int frame) {
   const RenderOptions options = sequence.color_options(config, frame);
   const CubeFrame cube = shutter_cube(
-      renderer, config.face_size, frame_shutter(config, frame),
+      renderer, config.face_size, frame_shutter(config, sequence, frame),
       [&](double t) { return sequence.city.rig(t); }, options, config.denoise == "atrous");
   return denoised_cube_color(config, cube);
 }
@@ -105,7 +105,7 @@ Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequenc
     const LensCover cover = release_lens_cover(config, sequence, camera, view);
     if (!cover.empty()) nits = through_cover(nits.view(), cover);
   }
-  const Shutter shutter = frame_shutter(config, frame);
+  const Shutter shutter = frame_shutter(config, sequence, frame);
   const Image<float> raw =
       sensor_raw(lens_image(nits.view(), camera, sensor).view(), sensor, exposure,
                  shutter.close - shutter.open,

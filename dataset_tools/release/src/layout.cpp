@@ -283,10 +283,13 @@ nlohmann::json layout_json(const ReleaseLayout& layout) {
           {"kinds", kinds}};
 }
 
-nlohmann::json conventions_json(const std::string& class_table_name) {
+nlohmann::json conventions_json(const std::string& class_table_name,
+                                const std::vector<double>& frame_rates) {
   const ClassTable& table = class_table(class_table_name);
   return {
-      {"frame_rate", kFrameRate},
+      {"frame_rate", frame_rates.size() == 1 ? nlohmann::json(frame_rates[0])
+                                             : nlohmann::json{{"per_sequence", "meta.json fps"},
+                                                              {"rates", frame_rates}}},
       {"time", "frame F is at F / frame_rate seconds"},
       {"world_frame", "right-handed, z up, metres"},
       {"rig_frame", "x forward, y left, z up"},

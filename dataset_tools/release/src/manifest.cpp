@@ -12,6 +12,7 @@
 #include "flowscape/release/explorer.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/release/scenario.h"
 #include "flowscape/release/sha256.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/scenes/city.h"
@@ -165,12 +166,13 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
   for (const fs::path& card : dataset_card_files(config))
     all[card.generic_string()] = file_entry(out / card);
   if (fs::exists(out / kConfigFile)) all[kConfigFile] = file_entry(out / kConfigFile);
-  nlohmann::json manifest = {{"generator", kGeneratorVersion},
-                             {"config", to_json(config)},
-                             {"counts", counts(config)},
-                             {"layout", layout_json(release_layout(config))},
-                             {"conventions", conventions_json(config.classes)},
-                             {"files", all}};
+  nlohmann::json manifest = {
+      {"generator", kGeneratorVersion},
+      {"config", to_json(config)},
+      {"counts", counts(config)},
+      {"layout", layout_json(release_layout(config))},
+      {"conventions", conventions_json(config.classes, release_frame_rates(config))},
+      {"files", all}};
   if (!statistics.is_null()) manifest["statistics"] = statistics;
   write_text(out / kManifestFile, manifest.dump(1) + "\n");
 }

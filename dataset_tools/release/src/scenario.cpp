@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <stdexcept>
 
 #include "flowscape/core/files.h"
@@ -68,8 +69,8 @@ int map_number(const nlohmann::json& map) {
   return int(found - names.begin());
 }
 
-Waypoint waypoint_from_json(const nlohmann::json& j, std::size_t k) {
-  const std::string where = "waypoint " + std::to_string(k) + ": ";
+Waypoint waypoint_from_json(const nlohmann::json& j, const std::string& list, std::size_t k) {
+  const std::string where = list + "waypoint " + std::to_string(k) + ": ";
   require_known(j, {"position", "time", "speed", "yaw_pitch_roll_degrees"}, where);
   require(j.contains("position"), where + "needs a \"position\" [x, y, z] (metres)");
   Waypoint w{vector3(j.at("position"), where + "position"), {}, {}, {}};
@@ -89,6 +90,162 @@ nlohmann::json to_json(const Waypoint& w) {
   return j;
 }
 
+// A path's waypoints (`where` names whose in errors), checked as waypoint_times checks them.
+std::vector<Waypoint> waypoints_from_json(const nlohmann::json& points, const std::string& where) {
+  require(points.is_array(), where + "\"waypoints\" must be a list");
+  std::vector<Waypoint> waypoints;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    waypoints.push_back(waypoint_from_json(points[k], where, k));
+  try {
+    waypoint_times(waypoints);
+  } catch (const std::invalid_argument& e) {
+    require(false, where + e.what());
+  }
+  return waypoints;
+}
+
+nlohmann::json waypoints_json(const std::vector<Waypoint>& waypoints) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const Waypoint& w : waypoints) points.push_back(to_json(w));
+  return points;
+}
+
+std::string absolute_file(const std::filesystem::path& base, const nlohmann::json& j,
+                          const char* key, const std::string& where, const std::string& what) {
+  const std::filesystem::path path =
+      std::filesystem::absolute(base / value<std::string>(j, key, "", where));
+  if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such " + what);
+  return path.string();
+}
+
+// A world file's "units": a unit's name or metres per unit.
+double metres_per_unit(const nlohmann::json& units) {
+  static const std::map<std::string, double> kUnits = {{"metres", 1},
+                                                       {"centimetres", 0.01},
+                                                       {"millimetres", 0.001},
+                                                       {"feet", 0.3048},
+                                                       {"inches", 0.0254}};
+  if (units.is_number()) {
+    const double metres = units.get<double>();
+    require(metres > 0 && std::isfinite(metres), "world \"units\" must be positive");
+    return metres;
+  }
+  const std::string name = units.is_string() ? units.get<std::string>() : "";
+  std::vector<std::string> names;
+  for (const auto& [known, metres] : kUnits) names.push_back(known);
+  const auto found = kUnits.find(name);
+  require(found != kUnits.end(),
+          "world \"units\": \"" + name +
+              "\" is not metres, centimetres, millimetres, feet, inches or a number (metres per "
+              "unit)" +
+              did_you_mean(name, names));
+  return found->second;
+}
+
+std::vector<WorldClass> world_classes(const nlohmann::json& list) {
+  require(list.is_array() && !list.empty(),
+          "world \"classes\" must list [\"pattern\", \"Class\"] pairs, first match wins "
+          "(\"*\" takes the rest)");
+  std::vector<WorldClass> classes;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const nlohmann::json& pair = list[k];
+    const std::string where = "world classes " + std::to_string(k) + ": ";
+    require(pair.is_array() && pair.size() == 2 && pair[0].is_string() && pair[1].is_string(),
+            where + "must be [\"pattern\", \"Class\"]");
+    try {
+      classes.push_back({pair[0].get<std::string>(), class_from_name(pair[1].get<std::string>())});
+    } catch (const std::invalid_argument& e) {
+      require(false, where + e.what());
+    }
+  }
+  return classes;
+}
+
+// {"map", "seed"} | {"file", "units", "up", "classes", "seed"}
+void world_from_json(const nlohmann::json& world, const std::filesystem::path& base, Scenario& s) {
+  require_known(world, {"map", "seed", "file", "units", "up", "classes"}, "world: ");
+  s.seed = value<std::uint64_t>(world, "seed", 0, "world: ");
+  if (!world.contains("file")) {
+    require(!world.contains("units") && !world.contains("up") && !world.contains("classes"),
+            "world: \"units\", \"up\" and \"classes\" are a world file's");
+    s.map = world.contains("map") ? map_number(world.at("map")) : 0;
+    return;
+  }
+  require(!world.contains("map"), "world: give a \"map\" or a \"file\", not both");
+  require(world.contains("units") && world.contains("up"),
+          "world: a world file needs its \"units\" (metres, centimetres, millimetres, feet, "
+          "inches, or metres per unit) and its \"up\" axis (y or z)");
+  WorldModel model;
+  model.path = absolute_file(base, world, "file", "world: ", "world file");
+  model.metres_per_unit = metres_per_unit(world.at("units"));
+  const std::string up = value<std::string>(world, "up", "", "world: ");
+  require(up == "y" || up == "z", "world: \"up\" must be y or z");
+  model.z_up = up == "z";
+  model.classes = world_classes(world.value("classes", nlohmann::json()));
+  s.world_file = std::move(model);
+  s.map = kUserWorldMap;
+  s.vehicles = s.pedestrians = 0;
+}
+
+nlohmann::json world_json(const Scenario& s) {
+  if (!s.world_file) return {{"map", map_name(s.map)}, {"seed", s.seed}};
+  nlohmann::json classes = nlohmann::json::array();
+  for (const WorldClass& c : s.world_file->classes)
+    classes.push_back({c.pattern, class_name(c.cls)});
+  return {{"file", s.world_file->path},
+          {"units", s.world_file->metres_per_unit},
+          {"up", s.world_file->z_up ? "z" : "y"},
+          {"classes", classes},
+          {"seed", s.seed}};
+}
+
+// {"kind", "model", "waypoints"} | {"kind", "model", "start", "speed", "turn"}
+ScriptedActor actor_from_json(const nlohmann::json& j, std::size_t k,
+                              const std::filesystem::path& base) {
+  const std::string where = "actor " + std::to_string(k) + ": ";
+  require_known(j, {"kind", "model", "waypoints", "start", "speed", "turn"}, where);
+  require(j.contains("kind") && (j.contains("waypoints") != j.contains("start")),
+          where + "needs a \"kind\" and either \"waypoints\" or a \"start\" [x, y] on a road");
+  ScriptedActor actor;
+  try {
+    actor.kind = kind_from_name(value<std::string>(j, "kind", "", where));
+  } catch (const std::invalid_argument& e) {
+    require(false, where + e.what());
+  }
+  require(actor.kind != ActorKind::Rider, where + "a rider comes with its bike or motorbike");
+  if (j.contains("model")) actor.model = absolute_file(base, j, "model", where, "model file");
+  if (j.contains("waypoints")) {
+    require(!j.contains("speed") && !j.contains("turn"),
+            where + "\"speed\" and \"turn\" go with a \"start\" (waypoints have their own)");
+    actor.waypoints = waypoints_from_json(j.at("waypoints"), where);
+    return actor;
+  }
+  const std::vector<double> start = value<std::vector<double>>(j, "start", {}, where);
+  require(start.size() == 2 && std::isfinite(start[0]) && std::isfinite(start[1]),
+          where + "\"start\" must be [x, y] (metres, on a lane of the map)");
+  actor.start = Eigen::Vector2d(start[0], start[1]);
+  actor.speed = value<double>(j, "speed", 0, where);
+  actor.turn = value<bool>(j, "turn", false, where);
+  require(actor.kind != ActorKind::Pedestrian && actor.speed > 0 && actor.speed <= 60,
+          where + "an actor with a start is a vehicle with a \"speed\" in (0, 60] m/s");
+  return actor;
+}
+
+nlohmann::json actors_json(const std::vector<ScriptedActor>& actors) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ScriptedActor& a : actors) {
+    nlohmann::json actor = {{"kind", kind_name(a.kind)}};
+    if (a.start)
+      actor["start"] = {a.start->x(), a.start->y()}, actor["speed"] = a.speed,
+      actor["turn"] = a.turn;
+    else
+      actor["waypoints"] = waypoints_json(a.waypoints);
+    if (!a.model.empty()) actor["model"] = a.model;
+    list.push_back(actor);
+  }
+  return list;
+}
+
 void origin_from_json(const nlohmann::json& j, RigPath& path) {
   require_known(j, {"position", "yaw_pitch_roll_degrees"}, "motion origin: ");
   if (j.contains("position")) path.origin_position = vector3(j.at("position"), "origin position");
@@ -99,30 +256,30 @@ void origin_from_json(const nlohmann::json& j, RigPath& path) {
 
 // {"route": ...} | {"waypoints": [...]} | {"pose_file", "format", "rate", "poses_of", "origin"}
 void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base, Scenario& s) {
-  require_known(j, {"route", "waypoints", "pose_file", "format", "rate", "poses_of", "origin"},
-                "motion: ");
+  require_known(
+      j,
+      {"route", "lane_change_at", "waypoints", "pose_file", "format", "rate", "poses_of", "origin"},
+      "motion: ");
   const int kinds =
       int(j.contains("route")) + int(j.contains("waypoints")) + int(j.contains("pose_file"));
   require(kinds == 1,
-          "motion: give one of \"route\" (the ego's: drive, turn, free), "
+          "motion: give one of \"route\" (the ego's: drive, turn, lane_change, free), "
           "\"waypoints\" or \"pose_file\" (the rig's own path)");
   if (j.contains("route")) {
     s.route = value<std::string>(j, "route", "drive", "motion: ");
-    require(s.route == "drive" || s.route == "turn" || s.route == "free",
-            "motion \"route\" must be drive, turn or free");
+    require(
+        s.route == "drive" || s.route == "turn" || s.route == "lane_change" || s.route == "free",
+        "motion \"route\" must be drive, turn, lane_change or free");
+    require(!j.contains("lane_change_at") || s.route == "lane_change",
+            "motion \"lane_change_at\" is for the lane_change route");
+    s.lane_change_at = value<double>(j, "lane_change_at", s.lane_change_at, "motion: ");
+    require(s.lane_change_at >= 0 && s.lane_change_at <= 3600,
+            "motion \"lane_change_at\" must be in 0..3600 seconds");
     return;
   }
   RigPath path;
   if (j.contains("waypoints")) {
-    const nlohmann::json& points = j.at("waypoints");
-    require(points.is_array(), "motion \"waypoints\" must be a list");
-    for (std::size_t k = 0; k < points.size(); ++k)
-      path.waypoints.push_back(waypoint_from_json(points[k], k));
-    try {
-      waypoint_times(path.waypoints);
-    } catch (const std::invalid_argument& e) {
-      require(false, std::string("motion: ") + e.what());
-    }
+    path.waypoints = waypoints_from_json(j.at("waypoints"), "motion: ");
   } else {
     const std::string file = value<std::string>(j, "pose_file", "", "motion: ");
     // absolute, so that the scenario a meta.json records finds it from anywhere
@@ -145,12 +302,10 @@ void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base
 }
 
 nlohmann::json motion_json(const Scenario& s) {
+  if (!s.path && s.route == "lane_change")
+    return {{"route", s.route}, {"lane_change_at", s.lane_change_at}};
   if (!s.path) return {{"route", s.route}};
-  if (s.path->pose_file.empty()) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const Waypoint& w : s.path->waypoints) points.push_back(to_json(w));
-    return {{"waypoints", points}};
-  }
+  if (s.path->pose_file.empty()) return {{"waypoints", waypoints_json(s.path->waypoints)}};
   return {{"pose_file", s.path->pose_file.string()},
           {"format", s.path->format},
           {"rate", s.path->rate},
@@ -191,7 +346,7 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   require_known(
       j,
       {"flowscape_scenario", "name", "world", "rig", "rig_mount", "ego", "motion", "traffic",
-       "models", "weather", "time_of_day", "sky", "frames", "frame_rate", "generator"},
+       "models", "weather", "time_of_day", "sky", "frames", "frame_rate", "generator", "actors"},
       "");
   require(j.value("flowscape_scenario", 0) == kScenarioSchema,
           "\"flowscape_scenario\": " + std::to_string(kScenarioSchema) +
@@ -200,10 +355,7 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   Scenario s;
   s.name = value<std::string>(j, "name", s.name, "");
   s.generator = value<std::string>(j, "generator", "", "");
-  const nlohmann::json world = j.value("world", nlohmann::json::object());
-  require_known(world, {"map", "seed"}, "world: ");
-  s.map = world.contains("map") ? map_number(world.at("map")) : 0;
-  s.seed = value<std::uint64_t>(world, "seed", 0, "world: ");
+  world_from_json(j.value("world", nlohmann::json::object()), base, s);
   s.rig = value<std::string>(j, "rig", s.rig, "");
   s.rig_mount = value<std::vector<double>>(j, "rig_mount", {}, "");
   s.ego = value<std::string>(j, "ego", s.ego, "");
@@ -212,12 +364,27 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   require(!s.path || s.ego != "on",
           "a rig with its own path (waypoints, a pose file) has no ego "
           "vehicle under it: \"ego\" must be off or auto");
+  require(!s.world_file || s.path,
+          "a world file has no roads for an ego vehicle: give the rig \"waypoints\" or a "
+          "\"pose_file\" in \"motion\"");
   const nlohmann::json traffic = j.value("traffic", nlohmann::json::object());
   require_known(traffic, {"vehicles", "pedestrians"}, "traffic: ");
   s.vehicles = value<int>(traffic, "vehicles", s.vehicles, "traffic: ");
   s.pedestrians = value<int>(traffic, "pedestrians", s.pedestrians, "traffic: ");
   require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
           "traffic: vehicles + pedestrians must be in 0..200");
+  require(!s.world_file || s.vehicles + s.pedestrians == 0,
+          "traffic: a world file has no roads or sidewalks for traffic (place \"actors\" "
+          "with waypoints)");
+  const nlohmann::json actors = j.value("actors", nlohmann::json::array());
+  require(actors.is_array(), "\"actors\" must be a list");
+  for (std::size_t k = 0; k < actors.size(); ++k) {
+    s.actors.push_back(actor_from_json(actors[k], k, base));
+    require(!s.world_file || !s.actors.back().start,
+            "actor " + std::to_string(k) +
+                ": a world file has no roads to start on (give it "
+                "\"waypoints\")");
+  }
   const nlohmann::json models = j.value("models", nlohmann::json::object());
   require(models.is_object(), "\"models\" must map actor kinds to model files");
   for (const auto& [kind, file] : models.items()) {
@@ -249,16 +416,14 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   s.frames = value<int>(j, "frames", s.frames, "");
   require(s.frames >= 2 && s.frames <= 999999, "\"frames\" must be in 2..999999");
   s.frame_rate = value<double>(j, "frame_rate", s.frame_rate, "");
-  require(s.frame_rate == kFrameRate,
-          "\"frame_rate\": sequences are rendered at " + std::to_string(int(kFrameRate)) +
-              " frames per second in this version (its scene-flow units and gaps assume it)");
+  require(s.frame_rate >= 1 && s.frame_rate <= 240, "\"frame_rate\" must be in 1..240");
   return s;
 }
 
 nlohmann::json to_json(const Scenario& s) {
   nlohmann::json j = {{"flowscape_scenario", kScenarioSchema},
                       {"name", s.name},
-                      {"world", {{"map", map_name(s.map)}, {"seed", s.seed}}},
+                      {"world", world_json(s)},
                       {"rig", s.rig},
                       {"ego", s.ego},
                       {"motion", motion_json(s)},
@@ -273,6 +438,7 @@ nlohmann::json to_json(const Scenario& s) {
   if (!s.rig_mount.empty()) j["rig_mount"] = s.rig_mount;
   if (!s.generator.empty()) j["generator"] = s.generator;
   if (!s.models.empty()) j["models"] = s.models;
+  if (!s.actors.empty()) j["actors"] = actors_json(s.actors);
   return j;
 }
 
@@ -331,6 +497,13 @@ Scenario scenario_of(const ReleaseConfig& config, const SequencePlan& plan) {
   s.frames = config.frames;
   s.generator = kGeneratorVersion;  // what renders it now
   return s;
+}
+
+std::vector<double> release_frame_rates(const ReleaseConfig& config) {
+  std::set<double> rates;
+  for (const std::string& file : config.scenarios) rates.insert(read_scenario(file).frame_rate);
+  if (rates.empty()) rates.insert(kFrameRate);
+  return {rates.begin(), rates.end()};
 }
 
 PoseTrack rig_path_track(const Scenario& s, const Rig& rig) {

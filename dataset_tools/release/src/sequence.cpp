@@ -29,14 +29,14 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
                     s.vehicles,
                     s.pedestrians,
                     int(s.seed % 100),
-                    s.route == "free"   ? EgoRoute::Free
-                    : s.route == "turn" ? EgoRoute::Turn
-                                        : EgoRoute::Drive,
+                    route_from_name(s.route),
                     config.frames,
                     config.models};
   set_actors(spec, config);
   spec.time_of_day = s.time_of_day, spec.sky = s.sky;
   spec.weather_parameters = s.weather_parameters;
+  spec.world = s.world_file, spec.scripted = s.actors, spec.frame_rate = s.frame_rate;
+  spec.lane_change_at = s.lane_change_at;
   for (const auto& [kind, file] : s.models) spec.models[kind] = file;  // over the release's
   if (s.path) {
     try {
@@ -62,7 +62,7 @@ void set_actors(SequenceSpec& spec, const ReleaseConfig& config) {
 }
 
 FramePair Sequence::frame_pair(int frame) const {
-  const double t = time(frame), next = t + 1 / kFrameRate;
+  const double t = time(frame), next = t + 1 / spec.frame_rate;
   return {t, next, city.rig(t), city.rig(next)};
 }
 
@@ -143,7 +143,9 @@ Sequence make_sequence(const SequenceSpec& spec) {
   city_config.map = spec.map, city_config.seed = spec.seed;
   city_config.vehicles = spec.vehicles, city_config.pedestrians = spec.pedestrians;
   city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
-  city_config.duration = (spec.frames + 1) / kFrameRate;
+  city_config.lane_change_at = spec.lane_change_at;
+  city_config.duration = (spec.frames + 1) / spec.frame_rate;
+  city_config.world = spec.world, city_config.scripted = spec.scripted;
   city_config.models = spec.models;
   Weather weather = under_sky(at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
                                              spec.time_of_day, spec.seed),
@@ -215,11 +217,11 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   meta.map_name = map_name(plan.map), meta.seed = plan.seed;
   meta.weather = to_json(s.weather);
   meta.weather["exposure"] = s.city.scene.environment.exposure;  // the sky's, applied to all light
-  meta.frames = config.frames, meta.fps = kFrameRate;
+  meta.frames = config.frames, meta.fps = s.spec.frame_rate;
   meta.camera_height = s.city.mount.height;
   meta.camera_pitch_sway = s.city.mount.pitch_amplitude * 180 / kPi;
   meta.camera_roll_sway = s.city.mount.roll_amplitude * 180 / kPi;
-  for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(Sequence::time(f)));
+  for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(s.time(f)));
   meta.city = to_json(s.city);
   const Rig rig = release_rig(config);
   meta.erp_height = rig.cameras.empty() ? config.height : 0;  // another rig has no ERP
@@ -265,11 +267,11 @@ std::string pack_licence(const CityConfig& city, const std::string& model) {
 }
 
 // The box (in the actor's frame: pose = its centre there) holding every per-frame box.
-Box3 extent_box(const Actor& actor, const std::vector<Box3>& boxes, int frames) {
+Box3 extent_box(const Sequence& s, const Actor& actor, const std::vector<Box3>& boxes, int frames) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (int f = 0; f < frames; ++f) {
     const Box3& box = boxes[std::size_t(f)];
-    const Pose in_actor = actor.pose(Sequence::time(f)).inverse() * box.pose;
+    const Pose in_actor = actor.pose(s.time(f)).inverse() * box.pose;
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3 local((corner & 1 ? 0.5 : -0.5) * box.size.x(),
                        (corner & 2 ? 0.5 : -0.5) * box.size.y(),
@@ -296,11 +298,12 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
                              {"kind", kind_name(of.kind)},
                              {"class", int(table.of_scene[std::size_t(actor_class(actor))])}};
     std::vector<Box3> boxes;
-    for (int f = 0; f < frames; ++f) boxes.push_back(actor_box(actor, Sequence::time(f)));
-    const Box3 fixed = extent_box(actor, boxes, frames);
+    for (int f = 0; f < frames; ++f) boxes.push_back(actor_box(actor, s.time(f)));
+    const Box3 fixed = extent_box(s, actor, boxes, frames);
     if (detailed) {
       if (of.parked) record["parked"] = true;
       if (of.ego) record["ego"] = true;
+      if (of.scripted) record["scripted"] = true;
       if (!of.model.empty()) {
         record["model"] = of.model;
         record["licence"] = pack_licence(s.city.config, of.model);
@@ -309,7 +312,7 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
                              {"size", vector_json(fixed.size)}};
     }
     for (int f = 0; f < frames; ++f) {  // one entry per frame in each column
-      const double t = Sequence::time(f);
+      const double t = s.time(f);
       const Box3& box = boxes[std::size_t(f)];
       const Motion motion =
           actor_motion(actor, t, actor.pose(t).inverse() * box.pose.translation());

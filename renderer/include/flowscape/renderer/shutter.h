@@ -13,8 +13,8 @@ namespace flowscape {
 struct Shutter {
   double open = 0, close = 0;  // seconds
 };
-// `angle` degrees of a frame at kFrameRate (180: half the frame time), centred on `time`.
-Shutter centred_shutter(double time, double angle);
+// `angle` degrees of a frame at `frame_rate` (180: half the frame time), centred on `time`.
+Shutter centred_shutter(double time, double angle, double frame_rate = kFrameRate);
 
 inline constexpr int kMaxShutterSteps = 8;
 // The steps a frame's shutter is cut into: the most, up to kMaxShutterSteps, that share the

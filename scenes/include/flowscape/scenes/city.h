@@ -6,15 +6,20 @@
 #include <array>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "flowscape/scenes/model_io.h"
 #include "flowscape/scenes/scene.h"
+#include "flowscape/scenes/trajectory.h"
 
 namespace flowscape {
 
 constexpr int kMapCount = 8;
-// downtown, suburb, highway, rural, roundabout, waterfront, industrial, hilltown
+// A user's world model (CityConfig::world) stands where a map's number would: "user_world".
+constexpr int kUserWorldMap = kMapCount;
+// downtown, suburb, highway, rural, roundabout, waterfront, industrial, hilltown, user_world
 std::string map_name(int map);
 
 // What traffic is made of. Lorry and Motorbike appear with detailed actors only (where legacy
@@ -36,11 +41,13 @@ ActorStyle style_from_name(const std::string& name);  // throws std::invalid_arg
 // at spawn, and starts tried (ego_start first, then every 37th start point on; at most kEgoTries)
 // until it drives at least half its lane's speed on average. Turn: as Drive, but it starts 3 m
 // to 0.3 x (lane speed x duration) before the end of the start point's lane, turns left or right
-// at that junction, and a start must also turn it by 45 degrees. Both judged by `duration` less
-// two frames (a release simulates a frame past the last frame it records); where no try passes,
-// the one that came closest is kept.
-enum class EgoRoute : std::uint8_t { Free, Drive, Turn };
-std::string route_name(EgoRoute route);             // "free", "drive", "turn"
+// at that junction, and a start must also turn it by 45 degrees. LaneChange: as Drive, but it
+// starts 8 m into a lane with another beside it going the same way (the starts tried are those
+// of such lanes) and changes into that lane once there is room from lane_change_at seconds on; a
+// start must also change. All judged by `duration` less two frames (a release simulates a frame
+// past the last frame it records); where no try passes, the one that came closest is kept.
+enum class EgoRoute : std::uint8_t { Free, Drive, Turn, LaneChange };
+std::string route_name(EgoRoute route);             // "free", "drive", "turn", "lane_change"
 EgoRoute route_from_name(const std::string& name);  // throws std::invalid_argument
 inline constexpr int kEgoTries = 24;
 inline constexpr double kEgoClearAhead = 40;  // metres
@@ -67,13 +74,29 @@ std::vector<std::string> asset_pack_names();
 // How records name a pack's model: "pack/name" ("torcs/p406").
 std::string model_id(const PackModel& model);
 
+// An actor placed by hand: its kind, a user model file (or empty: the kind's built-in model, drawn
+// by the seed), and either the waypoints it passes (trajectory.h: its x axis along its velocity,
+// standing where the waypoints put its origin; still before the first and after the last) or, a
+// vehicle in a built-in map, a start on the lane nearest `start` (within half a lane's width of its
+// centre line) from which it drives with the traffic by its rules at up to `speed` (m/s), turning
+// at its first junction where it can if `turn`.
+struct ScriptedActor {
+  ActorKind kind = ActorKind::Car;
+  std::string model;
+  std::vector<Waypoint> waypoints;
+  std::optional<Eigen::Vector2d> start{};
+  double speed = 0;
+  bool turn = false;
+};
+
 struct CityConfig {
   int map = 0;  // 0 .. kMapCount - 1
   std::uint64_t seed = 0;
   int vehicles = 60, pedestrians = 60;  // at most 200 together (the ego vehicle not counted)
   int ego_start = 0;                    // index into City::start_points
   EgoRoute ego_route = EgoRoute::Free;
-  double duration = 4.0;  // seconds of traffic to simulate (poses hold after it)
+  double lane_change_at = 1.0;  // seconds (EgoRoute::LaneChange)
+  double duration = 4.0;        // seconds of traffic to simulate (poses hold after it)
   // User models replacing the built-in ones, by kind name ("car", "pedestrian", ...): glTF
   // (.gltf/.glb) through tinygltf, anything else through assimp.
   std::map<std::string, std::string> models;
@@ -84,6 +107,10 @@ struct CityConfig {
   std::vector<Vec3> ego_cameras{Vec3::Zero()};
   // Opt-in asset packs (asset_pack): a quarter of the cars (detailed actors) are their models.
   std::vector<std::string> asset_packs{};
+  // A user's world instead of the map's (map is kUserWorldMap): it has no roads, so no traffic
+  // (vehicles and pedestrians 0), no start points and no ego vehicle (the rig needs a path).
+  std::optional<WorldModel> world{};
+  std::vector<ScriptedActor> scripted{};  // added after the others (detailed actors only)
 };
 void validate(const CityConfig& config);  // throws std::invalid_argument naming the bad value
 
@@ -99,7 +126,7 @@ struct ActorRecord {
   ActorKind kind;
   int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on; -1: none
   double s, speed;
-  bool parked = false, ego = false;
+  bool parked = false, ego = false, scripted = false;
   std::string model = "";  // an asset pack's model ("torcs/p406"), or empty: a built-in one
 };
 

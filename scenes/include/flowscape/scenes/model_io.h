@@ -19,6 +19,24 @@ namespace flowscape {
 // model after that (TORCS's cars: kTorcsTurn).
 Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene& scene,
                 const Material& fallback = {}, const Mat3& turn = Mat3::Identity());
+// A user's static world (a scenario's world file): its units and up axis as the file has them, and
+// the class of each part (a glTF node, else its mesh; an OBJ object or group) from the first
+// pattern its name matches (shell globs, case-insensitive: "road*", "*tree*", "*").
+struct WorldClass {
+  std::string pattern;
+  SemanticClass cls;
+};
+struct WorldModel {
+  std::string path;
+  double metres_per_unit = 1;
+  bool z_up = false;  // up along the file's z (Blender's, CAD's); else along its y (glTF's, OBJ's)
+  std::vector<WorldClass> classes;
+};
+// The world in our frame (x, y on the ground, z up) in metres, placed where the file puts it, with
+// its materials and textures as load_model reads them. A part whose name no pattern matches, an
+// animation or a skin is an error naming the file.
+Mesh load_world(const WorldModel& world, Scene& scene);
+
 // What turns TORCS's cars forward: read y-up, their length lies along y (their nose at -y).
 inline const Mat3 kTorcsTurn = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
 
@@ -37,6 +55,8 @@ struct ExportedMesh {
 // Reads a file written by export_gltf, nodes merged per instance in file order.
 std::vector<ExportedMesh> import_gltf(const std::string& path);
 
-std::string class_name(SemanticClass cls);
+std::string class_name(SemanticClass cls);  // "Road", "SideWalk", ...
+// The class of a name class_name gives (any case); throws std::invalid_argument listing them.
+SemanticClass class_from_name(const std::string& name);
 
 }  // namespace flowscape

@@ -17,7 +17,7 @@ namespace flowscape {
 
 SensorModel release_sensor(const ReleaseConfig& config);
 // The shutter of a frame (ReleaseConfig::shutter_angle, centred on the frame's time).
-Shutter frame_shutter(const ReleaseConfig& config, int frame);
+Shutter frame_shutter(const ReleaseConfig& config, const Sequence& sequence, int frame);
 
 // The auto-exposure after a frame, its key measured on the frame's clean colour as written (8-bit
 // sRGB, brought back to cd/m^2 through the sequence's exposure) where `camera` has an image (not

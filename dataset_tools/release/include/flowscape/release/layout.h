@@ -213,7 +213,10 @@ nlohmann::json layout_json(const ReleaseLayout& layout);
 // The conventions of a release's data, as manifest.json and the dataset card state them for
 // programs to read (docs/release.md, "Conventions"): flow direction, units, axes, the ERP seam,
 // sky and invalid values, depth, frames and time, the semantic class table (classes.h).
-nlohmann::json conventions_json(const std::string& class_table_name = "carla-0.9.13");
+// `frame_rates`: the release's (scenario.h's release_frame_rates); several are listed with
+// "per sequence" (meta.json's fps).
+nlohmann::json conventions_json(const std::string& class_table_name = "carla-0.9.13",
+                                const std::vector<double>& frame_rates = {kFrameRate});
 // The kinds a manifest's layout lists (a release from before they were listed: FlowScape's six);
 // throws std::invalid_argument for kinds it does not know.
 ReleaseLayout layout_from_json(const nlohmann::json& layout);

@@ -13,6 +13,7 @@
 
 #include "flowscape/release/config.h"
 #include "flowscape/renderer/rig.h"
+#include "flowscape/scenes/city.h"
 #include "flowscape/scenes/trajectory.h"
 #include "flowscape/weather/weather.h"
 
@@ -34,9 +35,15 @@ struct RigPath {
 
 struct Scenario {
   std::string name = "scenario";
-  int map = 0;
+  int map = 0;  // kUserWorldMap for a world file
   std::uint64_t seed = 0;
-  std::string route = "drive";  // the ego's: drive, turn, free (city.h's EgoRoute)
+  // A user's world model instead of a built-in map: no roads, so no traffic, and the rig has a
+  // path of its own; absolute path.
+  std::optional<WorldModel> world_file;
+  // Actors placed one by one, after the traffic (model files absolute).
+  std::vector<ScriptedActor> actors;
+  std::string route = "drive";  // the ego's: drive, turn, lane_change, free (city.h's EgoRoute)
+  double lane_change_at = 1.0;  // seconds: when a lane_change route changes lanes (at the soonest)
   std::optional<RigPath> path;  // instead of the ego's route
   int vehicles = 120, pedestrians = 80;
   // User models for actor kinds (car, truck, bus, bike, pedestrian -> a glTF or assimp file),
@@ -51,7 +58,7 @@ struct Scenario {
   std::vector<double> rig_mount;
   std::string ego = "auto";
   int frames = 100;
-  double frame_rate = 30;
+  double frame_rate = kFrameRate;  // frames per second, 1..240
   // The toolkit that recorded it (a release's meta.json: manifest.h's kGeneratorVersion); empty
   // in a scenario written by hand.
   std::string generator;
@@ -81,6 +88,9 @@ nlohmann::json release_keys(const std::vector<std::filesystem::path>& scenario_f
 // The scenario of a planned sequence of a release: read from its file (--scenario), or what the
 // plan and config make of a built-in map (its map, seed, route, traffic, weather, time, sky).
 Scenario scenario_of(const ReleaseConfig& config, const SequencePlan& plan);
+
+// The frame rates of a release's sequences, distinct and ascending ({30} without scenarios).
+std::vector<double> release_frame_rates(const ReleaseConfig& config);
 
 // The rig's pose over time (rig -> world) of a scenario with a path, its pose-file camera's mount
 // taken from `rig`. Throws std::invalid_argument when the path ends before the sequence does.

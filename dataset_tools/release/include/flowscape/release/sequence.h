@@ -31,7 +31,11 @@ struct SequenceSpec {
   std::string sky = "physical";     // weather.h's under_sky
   PoseTrack rig_path{};  // the rig's own path (a scenario's waypoints or pose file), or empty
   nlohmann::json weather_parameters =
-      nlohmann::json::object();  // set over the weather (scenario.h)
+      nlohmann::json::object();           // set over the weather (scenario.h)
+  std::optional<WorldModel> world{};      // a user's world model (map kUserWorldMap), or none
+  std::vector<ScriptedActor> scripted{};  // actors placed one by one (scenario.h)
+  double frame_rate = kFrameRate;         // frames per second
+  double lane_change_at = 1.0;            // seconds (EgoRoute::LaneChange)
 };
 // The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
 // start follows from its seed, its route from the plan's `turns` or the scenario file).
@@ -50,7 +54,7 @@ struct Sequence {
   City city;
   Weather weather;  // randomized(preset, seed): what the sequence's meta.json records
 
-  static double time(int frame) { return frame / kFrameRate; }
+  double time(int frame) const { return frame / spec.frame_rate; }
   FramePair frame_pair(int frame) const;      // frame -> frame + 1
   Moment moment(int frame) const;             // the frame's time and rig
   std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
