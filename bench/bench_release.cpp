@@ -6,6 +6,8 @@
 // release's colour before the denoiser, and the legacy actors (flowscape 0.9's boxes): the
 // detailed actors' cost over them (target: at most 15 %); and the same release with the final pass
 // (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %).
+// First, flowscape 0.10's order (each frame written before the next renders) against writing a
+// frame while the next renders, with how many cores were busy, and where the time went by phase.
 // Usage: bench_release [frames = 4] [threads = 2]
 #include <tbb/global_control.h>
 
@@ -14,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "flowscape/core/profile.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
 
@@ -26,10 +29,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Seconds per frame of a release's sequences of `release_frames` frames: the bench's few frames'
-// time less the sequence's set-up (its city, models and BVHs, timed on their own), plus the set-up
-// spread over release_frames.
-double seconds_per_frame(ReleaseConfig config, const fs::path& out, int release_frames) {
+// A release's sequences of `release_frames` frames as the bench's few frames measure them.
+struct Measured {
+  double seconds_per_frame = 0;   // the frames' time less the set-up, plus the set-up spread
+  double cores_busy = 0;          // CPU seconds over wall seconds while the sequence was written
+  std::vector<PhaseTime> phases;  // where that time went (core/profile.h)
+  double wall = 0;                // seconds the sequence took to write
+};
+
+// The sequence's set-up (its city, models and BVHs) is timed on its own first.
+Measured measure(ReleaseConfig config, const fs::path& out, int release_frames,
+                 WriteOverlap overlap = WriteOverlap::Frame) {
   fs::remove_all(out);
   const SequencePlan plan = plan_sequences(config).front();
   auto start = std::chrono::steady_clock::now();
@@ -38,11 +48,32 @@ double seconds_per_frame(ReleaseConfig config, const fs::path& out, int release_
     const Renderer renderer(sequence.city.scene);
   }
   const double setup = seconds_since(start);
+  reset_phase_times();
+  const double cpu = process_cpu_seconds();
   start = std::chrono::steady_clock::now();
-  write_sequence(config, plan, out, {[] {}, [] {}});
-  const double seconds = seconds_since(start);
+  write_sequence(config, plan, out, {[] {}, [] {}}, overlap);
+  Measured m;
+  m.wall = seconds_since(start);
+  m.cores_busy = (process_cpu_seconds() - cpu) / m.wall;
+  m.phases = phase_times();
   fs::remove_all(out);
-  return (seconds - setup) / config.frames + setup / release_frames;
+  m.seconds_per_frame = (m.wall - setup) / config.frames + setup / release_frames;
+  return m;
+}
+
+double seconds_per_frame(const ReleaseConfig& config, const fs::path& out, int release_frames) {
+  return measure(config, out, release_frames).seconds_per_frame;
+}
+
+// Where the new path's time went: each phase's wall seconds per frame and share of the wall time
+// (summed over threads: phases that overlap can add up to more than 100 %).
+void print_profile(const Measured& m, int frames) {
+  std::printf(
+      "  where a frame's time goes (wall seconds per frame, share of the sequence's wall "
+      "time; phases overlap):\n");
+  for (const PhaseTime& p : m.phases)
+    std::printf("    %-44s %6.3f s  %5.1f %%  (%ld calls)\n", p.name.c_str(), p.seconds / frames,
+                100 * p.seconds / m.wall, p.calls);
 }
 
 }  // namespace
@@ -57,7 +88,16 @@ int main(int argc, char** argv) {
   const fs::path out = fs::temp_directory_path() / "flowscape-bench-release";
   std::printf("bench_release: %d frames of map00_seq00, %d threads, %d x %d ERP, %d^2 faces\n",
               frames, threads, config.height, 2 * config.height, config.face_size);
-  const double release = seconds_per_frame(config, out, sequence_frames);
+  const Measured serial = measure(config, out, sequence_frames, WriteOverlap::None);
+  const Measured overlapped = measure(config, out, sequence_frames, WriteOverlap::Frame);
+  const double release = overlapped.seconds_per_frame;
+  std::printf("  writing after rendering (0.10's path)     %6.2f s/frame, cores busy %.2f of %d\n",
+              serial.seconds_per_frame, serial.cores_busy, threads);
+  std::printf(
+      "  writing while the next frame renders      %6.2f s/frame, cores busy %.2f of %d "
+      "(target >= 1.85 of 2): %+.1f %%\n",
+      release, overlapped.cores_busy, threads, 100 * (release / serial.seconds_per_frame - 1));
+  print_profile(overlapped, frames);
   ReleaseConfig legacy = config;
   legacy.actors = "legacy";
   const double boxes = seconds_per_frame(legacy, out, sequence_frames);

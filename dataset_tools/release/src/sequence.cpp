@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/profile.h"
 #include "flowscape/core/random.h"
 #include "flowscape/release/classes.h"
 #include "flowscape/release/scenario.h"
@@ -102,6 +103,7 @@ const UNet& release_unet(const ReleaseConfig& config) {
 }
 
 Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube) {
+  const ScopedPhase phase("denoising");
   if (config.denoise == "none") return raw_color(cube.color);
   if (config.denoise == "oidn") return neural_denoise_cube(release_unet(config), cube);
   return denoise_cube(cube);
@@ -110,6 +112,7 @@ Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& c
 Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
                             const Projection& camera, ImageView<const float> depth,
                             ImageView<const std::uint16_t> instance) {
+  const ScopedPhase phase("denoising");
   if (config.denoise == "none") return raw_color(layers);
   if (config.denoise == "oidn") {
     const NeuralFeatures f = neural_features(layers);
@@ -131,10 +134,12 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
   const RenderOptions options = sequence.color_options(config, frame);
-  const ColorLayers layers =
-      view.readout.global()
-          ? renderer.color_layers(camera, view.pair, options)
-          : renderer.color_layers(camera, view.pair.time, view.track, view.readout, options);
+  const ColorLayers layers = [&] {
+    const ScopedPhase phase("path tracing");
+    return view.readout.global()
+               ? renderer.color_layers(camera, view.pair, options)
+               : renderer.color_layers(camera, view.pair.time, view.track, view.readout, options);
+  }();
   return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
 }
 

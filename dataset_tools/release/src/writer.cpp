@@ -1,11 +1,14 @@
 #include "flowscape/release/writer.h"
 
+#include <future>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/profile.h"
 #include "flowscape/core/progress.h"
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/flow_io.h"
@@ -157,20 +160,45 @@ CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection
 // directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
 // previous frame) becomes this frame's.
 // Returns the ERP's statistics.
-FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                                      const Sequence& sequence, Renderer& renderer,
-                                      const CubeToErp* map, const fs::path& dir, int frame,
-                                      Exposure* exposure) {
+// A frame's images as rendered, written by write_frame (while the next frame renders).
+struct FrameImages {
+  std::optional<ViewImages> cube;                  // the six faces, stacked
+  std::vector<std::pair<View, ViewImages>> views;  // the ERP, or each camera of a rig in order
+};
+
+// Writes a frame's files; returns the statistics of its first view (statistics_view's).
+FrameStatistics write_frame(const fs::path& dir, const ReleaseLayout& layout, int frame, int frames,
+                            const FrameImages& images) {
+  {
+    const ScopedPhase phase("encoding and writing");
+    if (images.cube) write_cube(dir, layout, frame, frames, *images.cube);
+    for (const auto& [view, view_images] : images.views)
+      write_single_view(dir, layout, view, frame, frames, view_images);
+  }
+  const ScopedPhase phase("statistics");
+  return statistics_of(images.views.front().second, frame, frames);
+}
+
+FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
+                                   const Sequence& sequence, Renderer& renderer,
+                                   const CubeToErp* map, int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   const Projection erp = Projection::equirectangular(config.height);
-  GroundTruth truth = renderer.ground_truth(erp, plan.request);
+  GroundTruth truth = [&] {
+    const ScopedPhase phase("ground truth");
+    return renderer.ground_truth(erp, plan.request);
+  }();
   Image<float> erp_color;
   CubeFrame cube;
   Image<float> faces_color;
   if (map) {
     const RenderOptions options = sequence.color_options(config, frame);
-    cube = render_cube(renderer, config.face_size, plan.request, &options);
+    {
+      const ScopedPhase phase("cube faces: ground truth and path tracing");
+      cube = render_cube(renderer, config.face_size, plan.request, &options);
+    }
     faces_color = denoised_cube_color(config, cube);
+    const ScopedPhase phase("cube to ERP");
     erp_color = resample_bilinear(map->sampling, faces_color);
   } else {
     erp_color = release_color(config, sequence, renderer, erp, frame, truth);
@@ -178,6 +206,7 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
   Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
   FinalFlowscape final;
   if (exposure) {
+    const ScopedPhase phase("final pass");
     *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), erp, frame);
     if (map) {
       final = final_flowscape(config, sequence, renderer, *map, *exposure, frame);
@@ -187,35 +216,38 @@ FrameStatistics write_flowscape_frame(const ReleaseConfig& config, const Release
       final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
     }
   }
+  FrameImages images;
   if (map) {
     const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
-    write_cube(dir, layout, frame, config.frames,
-               view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps,
-                           class_table(config.classes),
-                           virtual_camera_images(layout, faces, plan, std::move(final.faces))));
+    images.cube = view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()),
+                              plan.steps, class_table(config.classes),
+                              virtual_camera_images(layout, faces, plan, std::move(final.faces)));
   }
-  const ViewImages images =
+  images.views.emplace_back(
+      View(),
       view_images(std::move(truth), std::move(erp_clean), plan.steps, class_table(config.classes),
-                  virtual_camera_images(layout, erp, plan, std::move(final.erp)));
-  write_single_view(dir, layout, View(), frame, config.frames, images);
-  return statistics_of(images, frame, config.frames);
+                  virtual_camera_images(layout, erp, plan, std::move(final.erp))));
+  return images;
 }
 
 // Another rig: every camera ray cast and path traced directly from its own optical centre.
-// Returns the first camera's statistics (statistics_view).
-FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                                const Rig& rig, const Sequence& sequence, Renderer& renderer,
-                                const fs::path& dir, int frame, Exposure* exposure) {
+FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
+                             const Rig& rig, const Sequence& sequence, Renderer& renderer,
+                             int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
-  FrameStatistics first;
+  FrameImages images;
   for (const RigCamera& camera : rig.cameras) {
     const int view = int(&camera - rig.cameras.data());
     const TruthRequest request = at_camera(plan.request, camera);
-    GroundTruth truth = renderer.ground_truth(camera.projection, request);
+    GroundTruth truth = [&] {
+      const ScopedPhase phase("ground truth");
+      return renderer.ground_truth(camera.projection, request);
+    }();
     const Image<float> color =
         release_color(config, sequence, renderer, camera.projection, request, frame, truth);
     Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
     if (exposure) {
+      const ScopedPhase phase("final pass");
       if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
         *exposure =
             exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
@@ -229,12 +261,11 @@ FrameStatistics write_rig_frame(const ReleaseConfig& config, const ReleaseLayout
       extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
     if (layout.has("lens_mask"))
       extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
-    const ViewImages images = view_images(std::move(truth), std::move(clean), plan.steps,
-                                          class_table(config.classes), std::move(extras));
-    write_single_view(dir, layout, View::of_camera(camera.name), frame, config.frames, images);
-    if (&camera == &rig.cameras.front()) first = statistics_of(images, frame, config.frames);
+    images.views.emplace_back(View::of_camera(camera.name),
+                              view_images(std::move(truth), std::move(clean), plan.steps,
+                                          class_table(config.classes), std::move(extras)));
   }
-  return first;
+  return images;
 }
 
 // The 2-D boxes of every instance per view and frame, from the sequence's instance images:
@@ -313,7 +344,7 @@ nlohmann::json recorded_config(const fs::path& out) {
 }  // namespace
 
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const fs::path& out,
-                    const SequenceProgress& progress) {
+                    const SequenceProgress& progress, WriteOverlap overlap) {
   const fs::path dir = sequence_dir(out, plan.name);
   const ReleaseLayout layout = release_layout(config);
   fs::create_directories(dir);
@@ -327,7 +358,9 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   }
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
+  std::optional<ScopedPhase> setting_up(std::in_place, "scene set-up");
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
+  setting_up.reset();
   // of every frame: those rendered now as they are written, the others read back
   const View view = statistics_view(layout);
   std::vector<FrameStatistics> statistics(std::size_t(config.frames));
@@ -346,6 +379,12 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
                             : CubeToErp{};
   const Projection metering = rig.cameras.empty() ? Projection::equirectangular(config.height)
                                                   : rig.cameras.front().projection;
+  // frame f's files are written while frame f + 1 renders (one frame in flight: WriteOverlap)
+  std::future<void> writing;
+  const auto write = [&](int f, FrameImages images) {
+    statistics[std::size_t(f)] = write_frame(dir, layout, f, config.frames, images);
+    progress.frame_done();
+  };
   for (int f = 0; f < config.frames; ++f) {
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
       if (final)
@@ -355,16 +394,26 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
             metering, f);
       continue;
     }
-    if (!renderer) renderer = std::make_unique<Renderer>(sequence.city.scene);
+    if (!renderer) {
+      const ScopedPhase phase("scene set-up");
+      renderer = std::make_unique<Renderer>(sequence.city.scene);
+    }
     Exposure* frame_exposure = final ? &exposure : nullptr;
-    statistics[std::size_t(f)] =
+    FrameImages images =
         rig.cameras.empty()
-            ? write_flowscape_frame(config, layout, sequence, *renderer, faces ? &map : nullptr,
-                                    dir, f, frame_exposure)
-            : write_rig_frame(config, layout, rig, sequence, *renderer, dir, f, frame_exposure);
+            ? render_flowscape_frame(config, layout, sequence, *renderer, faces ? &map : nullptr, f,
+                                     frame_exposure)
+            : render_rig_frame(config, layout, rig, sequence, *renderer, f, frame_exposure);
     if (final) exposures[std::size_t(f)] = exposure;
-    progress.frame_done();
+    if (writing.valid()) writing.get();  // its errors surface here
+    if (overlap == WriteOverlap::None) {
+      write(f, std::move(images));
+      continue;
+    }
+    writing = std::async(std::launch::async, write, f, std::move(images));
   }
+  if (writing.valid()) writing.get();
+  const ScopedPhase phase("meta.json and 2-D boxes");
   // last: its 2-D boxes come from the frames' instance images, and it marks the sequence done
   SequenceMeta meta = sequence_meta(sequence, plan, config);
   meta.boxes = boxes_json(dir, layout, config.frames);

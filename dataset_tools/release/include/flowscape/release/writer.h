@@ -10,11 +10,16 @@ namespace flowscape {
 struct SequenceProgress {
   std::function<void()> frame_done, frame_skipped;
 };
-// Renders and writes one sequence: meta.json, then every frame whose files are not all there and
-// complete yet (formats/complete_file.h; temporary files a killed run left are removed first).
+// Whether a frame's files are written while the next frame renders (Frame: one frame in flight, so
+// the cores stay busy while files are encoded; the bytes are the same either way) or before it
+// renders (None: flowscape 0.10's order, a baseline for bench_release).
+enum class WriteOverlap : std::uint8_t { Frame, None };
+// Renders and writes one sequence: every frame whose files are not all there and complete yet
+// (formats/complete_file.h; temporary files a killed run left are removed first), then meta.json.
 // Files appear atomically; the same config gives the same bytes whatever the thread count.
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan,
-                    const std::filesystem::path& out, const SequenceProgress& progress);
+                    const std::filesystem::path& out, const SequenceProgress& progress,
+                    WriteOverlap overlap = WriteOverlap::Frame);
 
 // Records the config in <out>/config.json before anything else. If `out` already holds a release
 // made with another config (config.json, or manifest.json's), refuses with a FileError naming the
