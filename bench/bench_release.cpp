@@ -8,9 +8,12 @@
 // (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %).
 // First, flowscape 0.10's order (each frame written before the next renders) against writing a
 // frame while the next renders, with how many cores were busy, and where the time went by phase.
-// Usage: bench_release [frames = 4] [threads = 2]
+// With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
+// time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
+// Usage: bench_release [frames = 4] [threads = 2] [runs = 0]
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -29,40 +32,75 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A release's sequences of `release_frames` frames as the bench's few frames measure them.
+// A release's sequences of `release_frames` frames as the bench's few frames of some measure them.
 struct Measured {
   double seconds_per_frame = 0;   // the frames' time less the set-up, plus the set-up spread
-  double cores_busy = 0;          // CPU seconds over wall seconds while the sequence was written
+  double cores_busy = 0;          // CPU seconds over wall seconds while the sequences were written
   std::vector<PhaseTime> phases;  // where that time went (core/profile.h)
-  double wall = 0;                // seconds the sequence took to write
+  double wall = 0;                // seconds the sequences took to write
 };
 
-// The sequence's set-up (its city, models and BVHs) is timed on its own first.
-Measured measure(ReleaseConfig config, const fs::path& out, int release_frames,
-                 WriteOverlap overlap = WriteOverlap::Frame) {
-  fs::remove_all(out);
-  const SequencePlan plan = plan_sequences(config).front();
-  auto start = std::chrono::steady_clock::now();
-  {
-    const Sequence sequence = make_sequence(sequence_spec(config, plan));
-    const Renderer renderer(sequence.city.scene);
-  }
-  const double setup = seconds_since(start);
-  reset_phase_times();
-  const double cpu = process_cpu_seconds();
-  start = std::chrono::steady_clock::now();
-  write_sequence(config, plan, out, {[] {}, [] {}}, overlap);
+// Writes the planned sequences, each's set-up (its city, models and BVHs) timed on its own first.
+Measured measure(const ReleaseConfig& config, const std::vector<SequencePlan>& plans,
+                 const fs::path& out, int release_frames, WriteOverlap overlap) {
+  double setup = 0, cpu = 0;
   Measured m;
-  m.wall = seconds_since(start);
-  m.cores_busy = (process_cpu_seconds() - cpu) / m.wall;
-  m.phases = phase_times();
+  reset_phase_times();
+  for (const SequencePlan& plan : plans) {
+    fs::remove_all(out);
+    auto start = std::chrono::steady_clock::now();
+    {
+      const Sequence sequence = make_sequence(sequence_spec(config, plan));
+      const Renderer renderer(sequence.city.scene);
+    }
+    setup += seconds_since(start);
+    const double cpu_before = process_cpu_seconds();
+    start = std::chrono::steady_clock::now();
+    write_sequence(config, plan, out, {[] {}, [] {}}, overlap);
+    m.wall += seconds_since(start);
+    cpu += process_cpu_seconds() - cpu_before;
+  }
   fs::remove_all(out);
-  m.seconds_per_frame = (m.wall - setup) / config.frames + setup / release_frames;
+  m.cores_busy = cpu / m.wall;
+  m.phases = phase_times();
+  const double sequences = double(plans.size());
+  m.seconds_per_frame =
+      (m.wall - setup) / (config.frames * sequences) + setup / (release_frames * sequences);
   return m;
+}
+
+Measured measure(const ReleaseConfig& config, const fs::path& out, int release_frames,
+                 WriteOverlap overlap = WriteOverlap::Frame) {
+  return measure(config, {plan_sequences(config).front()}, out, release_frames, overlap);
 }
 
 double seconds_per_frame(const ReleaseConfig& config, const fs::path& out, int release_frames) {
   return measure(config, out, release_frames).seconds_per_frame;
+}
+
+// The fixed sample issue 37 measures on: one sequence per map, the weather and time of day cycling
+// with the map (sunny by day, cloud at dusk, fog at night, rain at dawn, twice), so that every
+// map, weather and time of day is in it.
+std::vector<SequencePlan> fixed_sample(ReleaseConfig& config) {
+  config.maps = kMapCount, config.sequences_per_map = 4;
+  config.weathers = {"sunny", "cloud", "fog", "rain"};
+  config.times_of_day = {"day", "dusk", "night", "dawn"};
+  const std::vector<SequencePlan> all = plan_sequences(config);
+  std::vector<SequencePlan> sample;
+  for (int map = 0; map < kMapCount; ++map) sample.push_back(all[std::size_t(4 * map + map % 4)]);
+  return sample;
+}
+
+// The median run of `runs` over the fixed sample (by seconds per frame).
+Measured median_run(const ReleaseConfig& config, const std::vector<SequencePlan>& sample,
+                    const fs::path& out, int release_frames, WriteOverlap overlap, int runs) {
+  std::vector<Measured> all;
+  for (int run = 0; run < runs; ++run)
+    all.push_back(measure(config, sample, out, release_frames, overlap));
+  std::sort(all.begin(), all.end(), [](const Measured& a, const Measured& b) {
+    return a.seconds_per_frame < b.seconds_per_frame;
+  });
+  return all[all.size() / 2];
 }
 
 // Where the new path's time went: each phase's wall seconds per frame and share of the wall time
@@ -78,14 +116,38 @@ void print_profile(const Measured& m, int frames) {
 
 }  // namespace
 
+// Over the fixed sample, `runs` times each: 0.10's order and the new one, projected to the full
+// release, with where the new one's time went.
+void print_fixed_sample(ReleaseConfig config, const fs::path& out, int full_frames,
+                        int release_frames, int threads, int runs) {
+  const std::vector<SequencePlan> sample = fixed_sample(config);
+  std::printf(
+      "  the fixed sample: %zu sequences (one per map; sunny day, cloud dusk, fog night, "
+      "rain dawn), %d frames each, median of %d runs\n",
+      sample.size(), config.frames, runs);
+  const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
+  const Measured old_path =
+      median_run(config, sample, out, release_frames, WriteOverlap::None, runs);
+  const Measured new_path =
+      median_run(config, sample, out, release_frames, WriteOverlap::Frame, runs);
+  for (const auto& [name, m] : {std::pair{"0.10's path", &old_path}, {"the new path", &new_path}})
+    std::printf(
+        "    %-14s %6.2f s/frame, cores busy %.2f of %d: full release %5.2f h (target <= "
+        "2.7 h, cores >= 1.85)\n",
+        name, m->seconds_per_frame, m->cores_busy, threads, hours(m->seconds_per_frame));
+  print_profile(new_path, config.frames * int(sample.size()));
+}
+
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 4, threads = argc > 2 ? std::atoi(argv[2]) : 2;
+  const int runs = argc > 3 ? std::atoi(argv[3]) : 0;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   ReleaseConfig config;  // the paper's FlowScape
   const int full_frames = config.maps * config.sequences_per_map * config.frames,
             sequence_frames = config.frames;
   config.maps = 1, config.sequences_per_map = 1, config.frames = frames;
   const fs::path out = fs::temp_directory_path() / "flowscape-bench-release";
+  if (runs > 0) print_fixed_sample(config, out, full_frames, sequence_frames, threads, runs);
   std::printf("bench_release: %d frames of map00_seq00, %d threads, %d x %d ERP, %d^2 faces\n",
               frames, threads, config.height, 2 * config.height, config.face_size);
   const Measured serial = measure(config, out, sequence_frames, WriteOverlap::None);
