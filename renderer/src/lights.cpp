@@ -140,6 +140,8 @@ SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
   double running = 0;
   for (std::size_t i = 0; i < cells; ++i) cumulative_[i] = running += weights[i] + floor;
   for (double& c : cumulative_) c /= running;
+  for (int row = 0; row < dome_->rows; ++row)
+    row_ends_.push_back(cumulative_[std::size_t(row + 1) * dome_->columns - 1]);
   level_luminance_ = luminance(dome_->horizontal_irradiance().cast<double>());
 }
 
@@ -149,10 +151,16 @@ double SkySampler::cell_solid_angle(int row) const {
          (std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation));
 }
 
+// The first cell whose cumulative share exceeds u.x() (the last if none does), found in its row
+// first: the same cell as a search of the whole table, without its cache misses.
 Vec3 SkySampler::sample(Vec2 u) const {
-  const std::size_t cell = std::min<std::size_t>(
-      std::upper_bound(cumulative_.begin(), cumulative_.end(), u.x()) - cumulative_.begin(),
-      cumulative_.size() - 1);
+  const auto row_end = std::upper_bound(row_ends_.begin(), row_ends_.end(), u.x());
+  std::size_t cell = cumulative_.size() - 1;
+  if (row_end != row_ends_.end()) {
+    const auto first = cumulative_.begin() + (row_end - row_ends_.begin()) * dome_->columns;
+    cell =
+        std::size_t(std::upper_bound(first, first + dome_->columns, u.x()) - cumulative_.begin());
+  }
   const double lo = cell == 0 ? 0 : cumulative_[cell - 1];
   const double across = std::clamp((u.x() - lo) / (cumulative_[cell] - lo), 0.0, 1.0);
   const int row = int(cell / dome_->columns), column = int(cell % dome_->columns);

@@ -63,6 +63,7 @@ class SkySampler {
   double cell_solid_angle(int row) const;
   const SkyDome* dome_;
   std::vector<double> cumulative_;  // over the cells, row-major, ending at 1
+  std::vector<double> row_ends_;    // cumulative_ at each row's last cell: searched first
   double level_luminance_ = 0;
 };
 
