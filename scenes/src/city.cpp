@@ -138,9 +138,7 @@ bool in_ego_way(const Layout& layout, const StartPoint& ego, double clear, int l
                 double length, bool changing) {
   const Lane& ego_lane = layout.lanes[ego.lane];
   if (lane == ego.lane) return s + length / 2 > ego.s && s - length / 2 < ego.s + clear;
-  const Lane& other = layout.lanes[lane];
-  if (changing && other.from == ego_lane.from && other.to == ego_lane.to &&
-      std::abs(other.index - ego_lane.index) == 1)
+  if (changing && side_by_side(layout.lanes[lane], ego_lane))
     return s + length / 2 > ego.s - 20 && s - length / 2 < ego.s + clear;
   const double left = clear - (ego_lane.path.length() - ego.s);
   return layout.lanes[lane].from == ego_lane.to && s - length / 2 < left;
@@ -290,10 +288,8 @@ std::string format_seconds(double seconds) {
 
 // Whether another lane runs beside `lane` the same way (a lane change can go there).
 bool has_lane_beside(const Layout& layout, int lane) {
-  const Lane& a = layout.lanes[lane];
-  return std::any_of(layout.lanes.begin(), layout.lanes.end(), [&](const Lane& b) {
-    return b.from == a.from && b.to == a.to && std::abs(b.index - a.index) == 1;
-  });
+  return std::any_of(layout.lanes.begin(), layout.lanes.end(),
+                     [&](const Lane& other) { return side_by_side(layout.lanes[lane], other); });
 }
 
 // Whether a lane change can be made on `lane` from a start 8 m in: another lane beside it, and

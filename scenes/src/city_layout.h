@@ -3,6 +3,7 @@
 // T-junctions and longer blocks) with lanes, junctions, sidewalks and blocks, and the height of
 // the ground under it.
 #include <array>
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <utility>
@@ -41,6 +42,10 @@ struct Lane {
   Path path;     // from the stop line of `from` to the stop line of `to`
   double speed;  // wish speed of vehicles on it
 };
+// Lanes side by side on one road the same way (a vehicle can change from one to the other).
+inline bool side_by_side(const Lane& a, const Lane& b) {
+  return a.from == b.from && a.to == b.to && std::abs(a.index - b.index) == 1;
+}
 
 struct Block {
   Eigen::Vector2d lo, hi;           // between the road edges (outer blocks reach the map's margin)

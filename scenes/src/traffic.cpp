@@ -165,11 +165,8 @@ class Traffic {
     make_connectors();
     parallel_.resize(layout.lanes.size());
     for (int a = 0; a < int(layout.lanes.size()); ++a)
-      for (int b = 0; b < int(layout.lanes.size()); ++b) {
-        const Lane &la = layout.lanes[a], &lb = layout.lanes[b];
-        if (la.from == lb.from && la.to == lb.to && std::abs(la.index - lb.index) == 1)
-          parallel_[a].push_back(b);
-      }
+      for (int b = 0; b < int(layout.lanes.size()); ++b)
+        if (side_by_side(layout.lanes[a], layout.lanes[b])) parallel_[a].push_back(b);
     for (double& offset : light_offset_) offset = random_.uniform(0, 2 * kLightCycle);
     for (const VehicleStart& start : starts) {
       Vehicle v;
