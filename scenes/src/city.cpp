@@ -583,6 +583,27 @@ class PackModels {
   std::vector<std::pair<PackModel, std::shared_ptr<const Mesh>>> models_;
 };
 
+// Adds a vehicle's or walker's actors with their records: the first is `record`'s, any after it
+// the rider it carries (a Rider where the vehicle is, scripted if it is).
+void add_actors(std::vector<Actor> actors, ActorRecord record, City& city) {
+  for (Actor& actor : actors) {
+    city.actors.push_back(record);
+    city.scene.actors.push_back(std::move(actor));
+    ActorRecord rider{std::uint16_t(city.scene.actors.size() + 1), ActorKind::Rider, record.lane,
+                      record.s, record.speed};
+    rider.scripted = record.scripted;
+    record = rider;
+  }
+}
+
+// A scripted actor's model: its own file's (loaded into `own`), else the release's for its kind
+// (or none: the built-in one).
+const Mesh* scripted_model(const ScriptedActor& actor, const std::map<ActorKind, Mesh>& models,
+                           std::optional<Mesh>& own, Scene& scene) {
+  if (!actor.model.empty()) own = user_model(actor.kind, actor.model, scene);
+  return own ? &*own : user_model_of(models, actor.kind);
+}
+
 // The detailed actors: traffic (two-wheelers with their riders), walkers (one in eight of those in
 // groups a child), the parked cars and the ego vehicle, instances in that order.
 void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
@@ -590,24 +611,19 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
   const CityConfig& config = city.config;
   const Spawned& spawned = traffic.spawned;
   const auto next = [&] { return std::uint16_t(city.scene.actors.size() + 1); };
-  const auto add = [&](std::vector<Actor> actors, ActorRecord record) {
-    for (Actor& actor : actors) {
-      city.actors.push_back(record);
-      city.scene.actors.push_back(std::move(actor));
-      record = {next(), ActorKind::Rider, record.lane, record.s, record.speed};
-    }
-  };
   const PackModels pack(config, city.scene);
   const auto vehicle = [&](ActorKind kind, std::shared_ptr<const Track> track, ActorRecord record) {
     const PackModels::Pick picked = pack.pick(kind, record.instance, config.seed);
     if (picked.model) {
       record.model = model_id(*picked.model);
-      add(library.pack_vehicle(picked.mesh, *picked.model, record.instance, std::move(track)),
-          record);
+      add_actors(
+          library.pack_vehicle(picked.mesh, *picked.model, record.instance, std::move(track)),
+          record, city);
       return;
     }
-    add(library.vehicle(kind, record.instance, std::move(track), user_model_of(models, kind)),
-        record);
+    add_actors(
+        library.vehicle(kind, record.instance, std::move(track), user_model_of(models, kind)),
+        record, city);
   };
   std::vector<const ScriptedActor*> placed;  // in spawn order
   for (const ScriptedActor& actor : config.scripted)
@@ -622,11 +638,10 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
       continue;
     }
     record.scripted = true;
-    const std::string& file = placed[v - 1]->model;
-    const std::optional<Mesh> own =
-        file.empty() ? std::nullopt : std::optional(user_model(kind, file, city.scene));
-    add(library.vehicle(kind, record.instance, track, own ? &*own : user_model_of(models, kind)),
-        record);
+    std::optional<Mesh> own;
+    add_actors(library.vehicle(kind, record.instance, track,
+                               scripted_model(*placed[v - 1], models, own, city.scene)),
+               record, city);
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
@@ -638,9 +653,9 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     const bool child =
         grouped && tex::hash01(std::uint64_t(w), config.seed ^ 0x6368696c64ull) < 0.35;
     const auto track = std::make_shared<const Track>(traffic.tracks.walkers[w]);
-    add({library.pedestrian(next(), track, start.speed, child,
-                            user_model_of(models, ActorKind::Pedestrian))},
-        {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed});
+    add_actors({library.pedestrian(next(), track, start.speed, child,
+                                   user_model_of(models, ActorKind::Pedestrian))},
+               {next(), ActorKind::Pedestrian, start.loop, start.s, start.speed}, city);
   }
   for (const Pose& pose : parked) {
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
@@ -654,10 +669,10 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     ActorRecord record{next(), ActorKind::Car, traffic.ego.lane, traffic.ego.s, 0};
     record.ego = true;
     city.ego_instance = record.instance;
-    add({library.ego(record.instance, city.rig_track(),
-                     std::make_shared<const Track>(traffic.tracks.vehicles[0]), city.mount.height,
-                     config.ego_cameras)},
-        record);
+    add_actors({library.ego(record.instance, city.rig_track(),
+                            std::make_shared<const Track>(traffic.tracks.vehicles[0]),
+                            city.mount.height, config.ego_cameras)},
+               record, city);
   }
 }
 
@@ -672,21 +687,14 @@ void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& 
     const std::vector<double> times = waypoint_times(scripted.waypoints);
     const double speed = track->distance.back() / (times.back() - times.front());
     std::optional<Mesh> own;
-    if (!scripted.model.empty()) own = user_model(scripted.kind, scripted.model, city.scene);
-    const Mesh* model = own ? &*own : user_model_of(models, scripted.kind);
-    auto instance = std::uint16_t(city.scene.actors.size() + 1);
-    const std::vector<Actor> actors =
+    const Mesh* model = scripted_model(scripted, models, own, city.scene);
+    ActorRecord record{std::uint16_t(city.scene.actors.size() + 1), scripted.kind, -1, 0, speed};
+    record.scripted = true;
+    add_actors(
         scripted.kind == ActorKind::Pedestrian
-            ? std::vector<Actor>{library.pedestrian(instance, track, speed, false, model)}
-            : library.vehicle(scripted.kind, instance, track, model);
-    ActorKind kind = scripted.kind;
-    for (const Actor& actor : actors) {
-      ActorRecord record{instance++, kind, -1, 0, speed};
-      record.scripted = true;
-      city.actors.push_back(record);
-      city.scene.actors.push_back(actor);
-      kind = ActorKind::Rider;
-    }
+            ? std::vector<Actor>{library.pedestrian(record.instance, track, speed, false, model)}
+            : library.vehicle(scripted.kind, record.instance, track, model),
+        record, city);
   }
 }
 

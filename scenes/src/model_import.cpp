@@ -174,6 +174,16 @@ std::vector<Eigen::Matrix<double, N, 1>> gltf_attribute(const tinygltf::Model& m
   return values;
 }
 
+// Places a part's attributes by its node's transform (normals by its inverse transpose).
+void transform_part(const Eigen::Matrix4d& transform, std::vector<V3>& positions,
+                    std::vector<V3>& normals, std::vector<Eigen::Vector4d>& tangents) {
+  const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>(),
+                        normal_matrix = linear.inverse().transpose();
+  for (V3& p : positions) p = (transform * p.homogeneous()).head<3>();
+  for (V3& n : normals) n = normal_matrix * n;
+  for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
+}
+
 // A world holds still: moving parts belong in actors.
 void refuse_motion(bool animations, bool skins, const std::string& path) {
   if (animations) fail(path, "holds animations: a world model is static (script actors instead)");
@@ -196,17 +206,13 @@ Mesh load_gltf(const std::string& path, const Reading& reading, Scene& scene,
       fail(path, "node " + node.name + " refers to a mesh the file lacks");
     const SemanticClass cls =
         reading.class_of(node.name.empty() ? model.meshes[node.mesh].name : node.name);
-    const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>(),
-                          normal_matrix = linear.inverse().transpose();
     for (const tinygltf::Primitive& primitive : model.meshes[node.mesh].primitives) {
       if (primitive.mode != -1 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
       std::vector<V3> positions = gltf_attribute<3>(model, primitive, "POSITION", path),
                       normals = gltf_attribute<3>(model, primitive, "NORMAL", path);
       if (positions.empty()) fail(path, "a primitive has no POSITION");
-      for (V3& p : positions) p = (transform * p.homogeneous()).head<3>();
-      for (V3& n : normals) n = normal_matrix * n;
       std::vector<Eigen::Vector4d> tangents = gltf_attribute<4>(model, primitive, "TANGENT", path);
-      for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
+      transform_part(transform, positions, normals, tangents);
       const std::vector<int> indices = triangle_indices(model, primitive, positions.size(), path);
       std::uint16_t material = fallback;
       if (primitive.material >= int(model.materials.size()))
@@ -293,13 +299,7 @@ void add_assimp_mesh(Imported& out, const aiScene* file, const aiMesh* source,
       tangents.emplace_back(t.x(), t.y(), t.z(), normals.back().cross(t).dot(b) < 0 ? -1 : 1);
     }
   }
-  if (transform) {
-    const Eigen::Matrix3d linear = transform->topLeftCorner<3, 3>(),
-                          normal_matrix = linear.inverse().transpose();
-    for (V3& p : positions) p = (*transform * p.homogeneous()).head<3>();
-    for (V3& n : normals) n = normal_matrix * n;
-    for (Eigen::Vector4d& t : tangents) t.head<3>() = linear * t.head<3>();
-  }
+  if (transform) transform_part(*transform, positions, normals, tangents);
   std::vector<int> indices;
   for (unsigned f = 0; f < source->mNumFaces; ++f)
     if (source->mFaces[f].mNumIndices == 3)
@@ -365,13 +365,6 @@ Mesh load_with_assimp(const std::string& path, const Reading& reading, Scene& sc
   return finished(std::move(out));
 }
 
-}  // namespace
-
-std::string texture_cache_dir() {
-  if (const char* dir = std::getenv("FLOWSCAPE_TEXTURE_CACHE"); dir && *dir) return dir;
-  return (fs::temp_directory_path() / "flowscape-textures").string();
-}
-
 SemanticClass world_class(const WorldModel& world, const std::string& name) {
   std::string patterns;
   for (const WorldClass& c : world.classes) {
@@ -380,6 +373,22 @@ SemanticClass world_class(const WorldModel& world, const std::string& name) {
   }
   fail(world.path, "its part \"" + name + "\" matches no class pattern (" + patterns +
                        "): add one (\"*\" takes the rest)");
+}
+
+// A file's parts as `reading` reads them: glTF through tinygltf, anything else through assimp.
+Mesh load_mesh(const std::string& path, const Reading& reading, Scene& scene,
+               std::uint16_t fallback) {
+  const std::string extension = fs::path(path).extension().string();
+  return extension == ".gltf" || extension == ".glb"
+             ? load_gltf(path, reading, scene, fallback)
+             : load_with_assimp(path, reading, scene, fallback);
+}
+
+}  // namespace
+
+std::string texture_cache_dir() {
+  if (const char* dir = std::getenv("FLOWSCAPE_TEXTURE_CACHE"); dir && *dir) return dir;
+  return (fs::temp_directory_path() / "flowscape-textures").string();
 }
 
 Mesh load_world(const WorldModel& world, Scene& scene) {
@@ -392,11 +401,7 @@ Mesh load_world(const WorldModel& world, Scene& scene) {
                         world.z_up, true};
   Material fallback;
   fallback.albedo = {0.5f, 0.5f, 0.5f};
-  const std::uint16_t fallback_material = add_material(scene, fallback);
-  const std::string extension = fs::path(path).extension().string();
-  Mesh mesh = extension == ".gltf" || extension == ".glb"
-                  ? load_gltf(path, reading, scene, fallback_material)
-                  : load_with_assimp(path, reading, scene, fallback_material);
+  Mesh mesh = load_mesh(path, reading, scene, add_material(scene, fallback));
   if (mesh.triangles.empty()) fail(path, "the world has no triangles");
   for (Eigen::Vector3f& v : mesh.vertices) {
     v *= float(world.metres_per_unit);
@@ -409,12 +414,8 @@ Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene
                 const Material& fallback, const Mat3& turn) {
   if (!fs::is_regular_file(path)) fail(path, "no such model file");
   if (!(length > 0)) fail(path, "model length must be positive");
-  const std::string extension = fs::path(path).extension().string();
-  const std::uint16_t fallback_material = add_material(scene, fallback);
   const Reading reading{[cls](const std::string&) { return cls; }, false, false};
-  Mesh mesh = extension == ".gltf" || extension == ".glb"
-                  ? load_gltf(path, reading, scene, fallback_material)
-                  : load_with_assimp(path, reading, scene, fallback_material);
+  Mesh mesh = load_mesh(path, reading, scene, add_material(scene, fallback));
   if (mesh.triangles.empty()) fail(path, "the model has no triangles");
   const Eigen::Matrix3f r = turn.cast<float>();
   for (Eigen::Vector3f& v : mesh.vertices) v = r * v;

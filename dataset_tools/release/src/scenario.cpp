@@ -110,12 +110,13 @@ nlohmann::json waypoints_json(const std::vector<Waypoint>& waypoints) {
   return points;
 }
 
-std::string absolute_file(const std::filesystem::path& base, const nlohmann::json& j,
-                          const char* key, const std::string& where, const std::string& what) {
-  const std::filesystem::path path =
-      std::filesystem::absolute(base / value<std::string>(j, key, "", where));
+// A file a scenario names, relative to its folder, made absolute (so that the scenario a meta.json
+// records finds it from anywhere); a FileError "no such <what>" when it is not there.
+std::filesystem::path existing_file(const std::filesystem::path& base, const std::string& file,
+                                    const std::string& what) {
+  const std::filesystem::path path = std::filesystem::absolute(base / file);
   if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such " + what);
-  return path.string();
+  return path;
 }
 
 // A world file's "units": a unit's name or metres per unit.
@@ -176,7 +177,8 @@ void world_from_json(const nlohmann::json& world, const std::filesystem::path& b
           "world: a world file needs its \"units\" (metres, centimetres, millimetres, feet, "
           "inches, or metres per unit) and its \"up\" axis (y or z)");
   WorldModel model;
-  model.path = absolute_file(base, world, "file", "world: ", "world file");
+  model.path =
+      existing_file(base, value<std::string>(world, "file", "", "world: "), "world file").string();
   model.metres_per_unit = metres_per_unit(world.at("units"));
   const std::string up = value<std::string>(world, "up", "", "world: ");
   require(up == "y" || up == "z", "world: \"up\" must be y or z");
@@ -213,7 +215,9 @@ ScriptedActor actor_from_json(const nlohmann::json& j, std::size_t k,
     require(false, where + e.what());
   }
   require(actor.kind != ActorKind::Rider, where + "a rider comes with its bike or motorbike");
-  if (j.contains("model")) actor.model = absolute_file(base, j, "model", where, "model file");
+  if (j.contains("model"))
+    actor.model =
+        existing_file(base, value<std::string>(j, "model", "", where), "model file").string();
   if (j.contains("waypoints")) {
     require(!j.contains("speed") && !j.contains("turn"),
             where + "\"speed\" and \"turn\" go with a \"start\" (waypoints have their own)");
@@ -267,9 +271,11 @@ void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base
           "\"waypoints\" or \"pose_file\" (the rig's own path)");
   if (j.contains("route")) {
     s.route = value<std::string>(j, "route", "drive", "motion: ");
-    require(
-        s.route == "drive" || s.route == "turn" || s.route == "lane_change" || s.route == "free",
-        "motion \"route\" must be drive, turn, lane_change or free");
+    try {
+      route_from_name(s.route);
+    } catch (const std::invalid_argument& e) {
+      require(false, std::string("motion: ") + e.what());
+    }
     require(!j.contains("lane_change_at") || s.route == "lane_change",
             "motion \"lane_change_at\" is for the lane_change route");
     s.lane_change_at = value<double>(j, "lane_change_at", s.lane_change_at, "motion: ");
@@ -282,8 +288,6 @@ void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base
     path.waypoints = waypoints_from_json(j.at("waypoints"), "motion: ");
   } else {
     const std::string file = value<std::string>(j, "pose_file", "", "motion: ");
-    // absolute, so that the scenario a meta.json records finds it from anywhere
-    path.pose_file = std::filesystem::absolute(base / file);
     path.format = value<std::string>(j, "format", "tum", "motion: ");
     path.rate = value<double>(j, "rate", 10.0, "motion: ");
     path.poses_of = value<std::string>(j, "poses_of", "rig", "motion: ");
@@ -293,8 +297,7 @@ void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base
       require(false, std::string("motion: ") + e.what());
     }
     require(path.rate > 0 && std::isfinite(path.rate), "motion \"rate\" must be positive");
-    if (!std::filesystem::is_regular_file(path.pose_file))
-      throw FileError(path.pose_file, "no such pose file");
+    path.pose_file = existing_file(base, file, "pose file");
     if (j.contains("origin")) origin_from_json(j.at("origin"), path);
   }
   require(!j.contains("origin") || !path.pose_file.empty(), "motion \"origin\" is for a pose file");
@@ -394,9 +397,7 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
       require(false, std::string("models: ") + e.what());
     }
     require(file.is_string(), "models: \"" + kind + "\" must name a model file");
-    const std::filesystem::path path = std::filesystem::absolute(base / file.get<std::string>());
-    if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such model file");
-    s.models[kind] = path.string();
+    s.models[kind] = existing_file(base, file.get<std::string>(), "model file").string();
   }
   if (j.contains("weather") && j.at("weather").is_object()) {
     s.weather_parameters = j.at("weather");
