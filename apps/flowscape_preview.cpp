@@ -29,13 +29,13 @@ std::vector<View> shown_views(const ReleaseLayout& layout) {
 
 // Colour | flow of every shown view, one row each.
 void write_video(const fs::path& path, const fs::path& sequence, const std::vector<View>& views,
-                 int frames, int width, const std::string& classes) {
+                 int frames, int width, const std::string& classes, FlowFormat flow_format) {
   write_atomically(path, [&](const fs::path& temporary) {
     cv::VideoWriter video;
     for (int f = 0; f + 1 < frames; ++f) {
       std::vector<std::vector<Image<std::uint8_t>>> rows;
       for (const View& view : views) {
-        const auto row = frame_preview_row(sequence, f, width, view, classes);
+        const auto row = frame_preview_row(sequence, f, width, view, classes, flow_format);
         rows.push_back({row[0], row[1]});
       }
       const Image<std::uint8_t> tile = contact_sheet(rows);
@@ -80,7 +80,8 @@ int main(int argc, char** argv) {
         sequences.push_back(s);
     if (sequences.empty()) throw FileError(release, "no such sequences");
     remove_temporary_files(out);
-    const std::vector<View> views = shown_views(read_release_layout(release));
+    const ReleaseLayout layout = read_release_layout(release);
+    const std::vector<View> views = shown_views(layout);
     const std::string classes = read_release_class_table(release);
     Progress progress("flowscape_preview", sequences.size(), "sequences");
     for (const SequenceInfo& s : sequences) {
@@ -88,7 +89,7 @@ int main(int argc, char** argv) {
       std::vector<std::vector<Image<std::uint8_t>>> rows;
       for (int f : {0, (s.frames - 1) / 2, s.frames - 2})
         for (const View& view : views) {
-          rows.push_back(frame_preview_row(dir, f, width, view, classes));
+          rows.push_back(frame_preview_row(dir, f, width, view, classes, layout.flow_format));
           const std::string camera = view.is_erp() ? "" : " " + view.camera;
           const std::string frame =
               s.name + camera + " (" + s.weather + ") frame " + std::to_string(f);
@@ -98,7 +99,8 @@ int main(int argc, char** argv) {
         }
       write_image(fs::path(out) / (s.name + ".png"), contact_sheet(rows));
       if (!no_video)
-        write_video(fs::path(out) / (s.name + ".mp4"), dir, views, s.frames, width, classes);
+        write_video(fs::path(out) / (s.name + ".mp4"), dir, views, s.frames, width, classes,
+                    layout.flow_format);
       progress.advance();
     }
     progress.finish();

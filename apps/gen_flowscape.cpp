@@ -192,6 +192,10 @@ int main(int argc, char** argv) {
                  "comma-separated frame gaps of every flow kind (1 is the next frame; flow_gap<k> "
                  "and, with backward flow, flow_backward_gap<k> for the others)")
       ->default_str("1");
+  option("--flow-format", "flow_format", defaults.flow_format,
+         "how every flow kind is stored: flo (Middlebury float32; the PanoFlow tree's), kitti-png "
+         "(16-bit PNG, 1/64 px steps within +-512 px) or half-exr (half floats: 1/4 px steps from "
+         "256 px); flow beyond the range is marked unknown, never wrapped");
   option("--shutter-angle", "shutter_angle", defaults.shutter_angle,
          "the final pass (--outputs final): degrees of a frame the shutter is open, centred on "
          "the frame's time (1-360; the motion blur's length is the flow times angle / 360)");

@@ -2,6 +2,7 @@
 # parts (options in CMakeLists.txt) look only for what they need.
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(OpenImageIO 2.4 REQUIRED)
+find_package(Imath 3 REQUIRED)  # half floats (flow stored as half-float EXR), libimath-dev
 find_package(TBB REQUIRED)
 find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d)
 # Debian's interpreter (with python3-numpy, python3-pytest and python3-torch), whatever python3 is first on PATH.

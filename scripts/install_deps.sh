@@ -7,7 +7,7 @@
 set -euo pipefail
 required=(
   build-essential cmake pkg-config
-  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libtinygltf-dev libassimp-dev
+  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libtinygltf-dev libassimp-dev
   libeigen3-dev libopencv-dev nlohmann-json3-dev libtbb-dev libcli11-dev
 )
 optional=(

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from .io import read_flo, read_image, UNKNOWN_FLOW
+from .io import read_flow, read_image, UNKNOWN_FLOW
 from .cameras import camera_record
 from .layout import ReleaseLayout
 
@@ -275,7 +275,7 @@ class FlowScape:
     def sample(self, index):
         """The item as numpy arrays (H x W x C), before the transform and tensors."""
         item = self.items[index]
-        flow = read_flo(item["flow"])
+        flow = read_flow(item["flow"])
         known = (np.abs(flow) < self.unknown_flow / 10).all(axis=2)
         flow = np.where(known[..., None], flow, 0).astype(np.float32)
         valid = known.copy()
@@ -293,7 +293,7 @@ class FlowScape:
                   "flow": flow, "valid": valid.astype(np.float32), "meta": dict(item["meta"]),
                   "panorama": panorama}  # the view wraps round: what Augmentation shifts and crops
         for kind, (path, is_flow) in item.get("outputs", {}).items():
-            sample[kind] = read_flo(path) if is_flow else read_image(path)
+            sample[kind] = read_flow(path) if is_flow else read_image(path)
         if self.exclude_sky or "semantic" in self.extras:
             semantic = read_image(item["semantic"])[..., 0].astype(np.int64)
             if self.exclude_sky:

@@ -28,6 +28,32 @@ def read_flo(path):
     return np.frombuffer(data, "<f4", offset=12).reshape(height, width, 2).astype(np.float32)
 
 
+def read_flow(path):
+    """H x W x 2 float32 flow of a release's flow file, by its extension: Middlebury .flo, KITTI's
+    16-bit PNG (gen_flowscape --flow-format kitti-png) or EXR (half-exr); what the file marks
+    unknown (KITTI's B = 0, an EXR's infinity) as UNKNOWN_FLOW, the .flo convention."""
+    suffix = str(path).rsplit(".", 1)[-1].lower()
+    if suffix == "flo":
+        return read_flo(path)
+    if suffix == "png":
+        png = read_image(path)
+        if png.dtype != np.uint16 or png.ndim != 3 or png.shape[2] != 3:
+            raise ValueError(f"{path}: not a KITTI flow PNG (16-bit RGB)")
+        flow = ((png[..., :2].astype(np.float64) - 32768.0) / 64.0).astype(np.float32)
+        flow[png[..., 2] == 0] = UNKNOWN_FLOW
+        return flow
+    if suffix == "exr":
+        exr = read_image(path)
+        if exr.ndim != 3 or exr.shape[2] < 2:
+            raise ValueError(f"{path}: a flow EXR needs 2 channels (u, v)")
+        flow = exr[..., :2].astype(np.float32)
+        if np.isnan(flow).any():
+            raise ValueError(f"{path}: flow holds NaN")
+        flow[np.isinf(flow)] = UNKNOWN_FLOW
+        return flow
+    raise ValueError(f"{path}: unknown flow file type (use .flo, .png or .exr)")
+
+
 def write_flo(path, flow):
     flow = np.asarray(flow, dtype="<f4")
     with open(path, "wb") as out:

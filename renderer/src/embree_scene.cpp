@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "flowscape/core/profile.h"
 #include "flowscape/scenes/skinning.h"
 
 namespace flowscape {
@@ -265,6 +266,7 @@ Pose EmbreeScene::pose_at(unsigned mesh, double t) const {
 
 bool EmbreeScene::pose(PosedScene& scene, double t) const {
   if (scene.posed && scene.time == t) return false;
+  const ScopedPhase phase("BVH updates: actors moved, skins rebuilt");
   scene.poses.resize(meshes_.size());
   tbb::parallel_for(std::size_t(0), skinned_.size(), [&](std::size_t k) {
     const MeshRef& ref = meshes_[skinned_[k]];

@@ -9,6 +9,7 @@
 
 #include "cube_faces.h"
 #include "embree_scene.h"
+#include "flowscape/core/profile.h"
 #include "flowscape/stitcher/geometry.h"
 #include "image_textures.h"
 #include "path_tracer.h"
@@ -216,7 +217,10 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& req
   all.more.resize(request.more.size());
   for (Face face : kFaces) {
     const Projection projection = Projection::cube_face(face, face_size);
-    const GroundTruth gt = renderer.ground_truth(projection, request, mode);
+    const GroundTruth gt = [&] {
+      const ScopedPhase phase("cube faces: ground truth");
+      return renderer.ground_truth(projection, request, mode);
+    }();
     put_face(all.flow, face, gt.flow), put_face(all.semantic, face, gt.semantic);
     put_face(all.instance, face, gt.instance), put_face(all.depth, face, gt.depth);
     put_face(all.valid, face, gt.valid);
@@ -228,6 +232,7 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& req
                                 {&gt.shading_normal, &all.shading_normal}})
       if (!image->data.empty()) put_face(*faces, face, *image);
     if (!color_options) continue;
+    const ScopedPhase phase("cube faces: path tracing");
     put_face(cube.color, face, renderer.color_layers(projection, request.pair, *color_options));
   }
   return cube;

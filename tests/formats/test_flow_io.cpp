@@ -114,3 +114,54 @@ TEST_CASE("flow that a format cannot hold is refused and nothing is written") {
                     Catch::Contains("exceeds the KITTI"));
   CHECK(fsys::is_empty(dir.path));
 }
+
+// The values a flow file of each release format keeps, by closed forms: KITTI rounds to 1/64 px
+// within [-512, 511.984]; a half float keeps 11 significant bits (1/8 px steps from 128 px, 1/4
+// from 256, 1/2 from 512) up to 65504.
+TEST_CASE("a release's flow formats keep the flow to their precision and flag what is beyond") {
+  TempDir dir;
+  const std::vector<float> values = {0.3f,   -7.126f, 130.06f, -250.3f, 300.13f,     -511.9f,
+                                     600.2f, -600.7f, 700.3f,  70000.f, kUnknownFlow};
+  Image<float> uv(int(values.size()), 1, 2);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    uv.data[2 * i] = values[i], uv.data[2 * i + 1] = i + 1 == values.size() ? kUnknownFlow : 1.f;
+  const auto kept = [](FlowFormat format, float x) -> float {
+    if (format == FlowFormat::KittiPng)
+      return std::abs(x) < 511.99f ? std::round(x * 64) / 64 : kUnknownFlow;
+    if (std::abs(x) > 65504) return kUnknownFlow;
+    const double step = std::abs(x) >= 512   ? 0.5
+                        : std::abs(x) >= 256 ? 0.25
+                        : std::abs(x) >= 128 ? 0.125
+                                             : std::ldexp(1.0, std::ilogb(x) - 10);
+    return float(std::round(x / step) * step);
+  };
+  for (const FlowFormat format : {FlowFormat::KittiPng, FlowFormat::HalfExr}) {
+    INFO(flow_format_name(format));
+    const fsys::path file = dir.path / ("flow" + std::string(flow_format_extension(format)));
+    const std::size_t flagged = write_flow_as(file, format, uv.view());
+    CHECK(flagged == (format == FlowFormat::KittiPng ? 4 : 1));  // 600.2, -600.7, 700.3, 70000
+    const Flow back = read_flow(file);
+    const Image<float> expected = stored_flow(format, uv.view());
+    CHECK(back.uv.data == expected.data);
+    for (std::size_t i = 0; i + 1 < values.size(); ++i) {
+      INFO(values[i]);
+      const float u = kept(format, values[i]);
+      CHECK(back.uv.data[2 * i] == u);
+      CHECK(back.uv.data[2 * i + 1] == (u == kUnknownFlow ? kUnknownFlow : 1.f));
+      CHECK(*back.valid.pixel(int(i), 0) == (u != kUnknownFlow));
+    }
+    CHECK(back.uv.data[2 * (values.size() - 1)] == kUnknownFlow);
+  }
+  // KITTI's flagged values are clamped to the range, not wrapped, and B = 0
+  const Image<std::uint16_t> png = read_image<std::uint16_t>(dir.path / "flow.png");
+  CHECK((png.pixel(6, 0)[0] == 65535 && png.pixel(6, 0)[2] == 0));
+  CHECK((png.pixel(7, 0)[0] == 0 && png.pixel(7, 0)[2] == 0));
+  CHECK((png.pixel(5, 0)[0] == 32768 - 32762 && png.pixel(5, 0)[2] == 1));  // -511.9 * 64
+  // a half EXR's unknown and beyond-range flow is +infinity
+  const Image<float> exr = read_image<float>(dir.path / "flow.exr");
+  CHECK(std::isinf(exr.pixel(9, 0)[0]));
+  CHECK(std::isinf(exr.pixel(10, 0)[0]));
+  CHECK(exr.pixel(4, 0)[0] == 300.25f);
+  CHECK_THROWS_WITH(flow_format_from_name("kitti"), Catch::Contains("kitti-png"));
+  CHECK(flow_format_from_name("half-exr") == FlowFormat::HalfExr);
+}

@@ -1,6 +1,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <limits>
 
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
@@ -40,4 +43,35 @@ TEST_CASE("8-bit sRGB decodes to linear and encodes back to the same byte") {
   CHECK(srgb8_to_linear(255) == Approx(1));
   CHECK(srgb8_to_linear(10) == Approx(10 / 255.0 / 12.92));  // the linear segment
   CHECK(srgb8_to_linear(188) == Approx(std::pow((188 / 255.0 + 0.055) / 1.055, 2.4)));
+}
+
+TEST_CASE("every PNG level and EXR compression gives back the same pixels; bad levels refused") {
+  Image<std::uint8_t> bytes(37, 11, 3);
+  Image<std::uint16_t> words(37, 11, 1);
+  Image<float> floats(37, 11, 3);
+  for (std::size_t i = 0; i < bytes.data.size(); ++i) bytes.data[i] = std::uint8_t(i * 7919 % 251);
+  for (std::size_t i = 0; i < words.data.size(); ++i) words.data[i] = std::uint16_t(i * 40503);
+  for (std::size_t i = 0; i < floats.data.size(); ++i) floats.data[i] = std::sin(double(i)) * 1e3f;
+  floats.data[5] = std::numeric_limits<float>::quiet_NaN();
+  floats.data[6] = std::numeric_limits<float>::infinity();
+  const auto temp = std::filesystem::temp_directory_path() / "flowscape-compression-test";
+  std::filesystem::create_directories(temp);
+  std::vector<std::uintmax_t> sizes;  // of the 8-bit PNG, by level
+  for (int level = 0; level <= 9; ++level) {
+    write_image<std::uint8_t>(temp / "b.png", bytes.view(), {}, {level, "zip"});
+    write_image<std::uint16_t>(temp / "w.png", words.view(), {}, {level, "zip"});
+    CHECK(read_image<std::uint8_t>(temp / "b.png").data == bytes.data);
+    CHECK(read_image<std::uint16_t>(temp / "w.png").data == words.data);
+    sizes.push_back(std::filesystem::file_size(temp / "b.png"));
+  }
+  CHECK(sizes[9] < sizes[0]);  // deflated against stored: the level reached libpng
+  for (const char* exr : {"zip", "zips", "piz", "rle", "none"}) {
+    INFO(exr);
+    write_image<float>(temp / "f.exr", floats.view(), {}, {6, exr});
+    const Image<float> back = read_image<float>(temp / "f.exr");
+    CHECK(std::memcmp(back.data.data(), floats.data.data(), floats.data.size() * 4) == 0);
+  }
+  CHECK_THROWS_WITH(encode_image<std::uint8_t>(temp / "b.png", bytes.view(), {}, {10, "zip"}),
+                    Catch::Contains("b.png") && Catch::Contains("PNG compression level 10"));
+  std::filesystem::remove_all(temp);
 }

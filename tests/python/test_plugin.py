@@ -749,3 +749,30 @@ def test_a_crop_or_a_scale_of_a_camera_view_comes_with_its_adjusted_camera(rig_r
     faces = flowscape.FlowScape(tiny_release, "train", faces=("left",), extras=("calibration",),
                                 as_tensors=False)
     assert json.loads(faces.sample(0)["calibration"])["model"] == "pinhole"
+
+
+@pytest.mark.parametrize("flow_format,extension", [("kitti-png", ".png"), ("half-exr", ".exr")])
+def test_a_release_with_compressed_flow_trains_on_the_same_flow_to_its_precision(
+        tiny_release, tmp_path, flow_format, extension):
+    out = tmp_path / flow_format
+    config = json.loads((tiny_release / "config.json").read_text())
+    subprocess.run([f"{BIN}/gen_flowscape", "--maps", "1", "--frames", "3", "--resolution", "32",
+                    "--face-size", "16", "--spp", "1", "--vehicles", "10", "--pedestrians", "5",
+                    "--flow-format", flow_format, "--out", str(out)], check=True,
+                   capture_output=True)
+    subprocess.run([f"{BIN}/flowscape_split", str(out)], check=True, capture_output=True)
+    assert json.loads((out / "config.json").read_text()) == {**config, "flow_format": flow_format}
+    layout = flowscape.ReleaseLayout(out)
+    assert layout.frame_file("map00_seq00", "flow", 0).endswith("000000" + extension)
+    stored = flowscape.FlowScape(out, "train")
+    floats = flowscape.FlowScape(tiny_release, "train")
+    assert len(stored) == len(floats) > 0
+    for k in range(len(floats)):
+        mine, exact = stored.sample(k), floats.sample(k)
+        both = (mine["valid"] > 0) & (exact["valid"] > 0)
+        assert both.sum() > 0.9 * (exact["valid"] > 0).sum()
+        error = np.abs(mine["flow"] - exact["flow"])[both]
+        # KITTI: 1/64 px steps, rounded; half: 11 significant bits, rounded
+        bound = (1 / 128 if flow_format == "kitti-png"
+                 else np.abs(exact["flow"])[both] * 2.0 ** -11 + 1e-7)
+        assert (error <= bound + 1e-6).all()

@@ -61,6 +61,12 @@ TEST_CASE("the writer makes every file of the layout, each as its row of the tab
         std::visit(
             [&](const auto& i) {
               CHECK((i.width == width && i.height == height && i.channels == kind.channels));
+              // encoded at the row's PNG level (colour 2, every ground-truth kind libpng's
+              // default 6 as before, so its bytes are flowscape 0.10's) and EXR zip
+              const std::vector<unsigned char> expected =
+                  encode_image(file, i.view(), {}, Compression{kind.png_level, "zip"});
+              CHECK(file_bytes(seq / file) == std::string(expected.begin(), expected.end()));
+              CHECK(kind.png_level == (kind.name == "color" || kind.name == "final" ? 2 : 6));
             },
             image);
       }
@@ -121,6 +127,47 @@ TEST_CASE("a rerun skips finished frames and redoes a damaged one to the same by
   CHECK(file_bytes(lost) == lost_bytes);
   CHECK(file_bytes(kept) == kept_bytes);
   CHECK_FALSE(fs::exists(seq / "erp" / "flow" / ".partial-4242-000001.flo"));
+}
+
+TEST_CASE("compressed flow: the flow files keep the flow to the format, nothing else moves") {
+  TempDir flo_dir, dir;
+  ReleaseConfig config = tiny_release_config();
+  write(config, flo_dir.path);
+  const ReleaseLayout flo_layout = release_layout(config);
+  for (const char* format : {"kitti-png", "half-exr"}) {
+    INFO(format);
+    config.flow_format = format;
+    const fs::path out = dir.path / format;
+    write(config, out);
+    const ReleaseLayout layout = release_layout(config);
+    const fs::path seq = sequence_dir(out, "map00_seq00"),
+                   flo_seq = sequence_dir(flo_dir.path, "map00_seq00");
+    int flows = 0;
+    for (int f = 0; f < 3; ++f) {
+      const std::vector<fs::path> files = layout.frame_files(f, 3),
+                                  flo_files = flo_layout.frame_files(f, 3);
+      REQUIRE(files.size() == flo_files.size());
+      for (std::size_t k = 0; k < files.size(); ++k) {
+        INFO(files[k]);
+        if (files[k].extension() == flo_files[k].extension()) {  // every other kind's bytes
+          CHECK(file_bytes(seq / files[k]) == file_bytes(flo_seq / flo_files[k]));
+          continue;
+        }
+        const FlowFormat stored = flow_format_from_name(format);
+        CHECK(files[k].extension() == flow_format_extension(stored));
+        CHECK(read_flow(seq / files[k]).uv.data ==
+              stored_flow(stored, read_flo(flo_seq / flo_files[k]).uv.view()).data);
+        ++flows;
+      }
+    }
+    CHECK(flows == 7 * (2 + 2));  // forward on frames 0, 1 and backward on 1, 2, in seven views
+    // statistics read back from the files on resume are those of the flow as stored
+    const std::string meta = file_bytes(seq / kMetaFile);
+    fs::remove(seq / frame_file(*layout.find("color"), std::nullopt, 0));
+    fs::remove(seq / kMetaFile);
+    CHECK(write(config, out).done == 1);
+    CHECK(file_bytes(seq / kMetaFile) == meta);
+  }
 }
 
 TEST_CASE("a rig's cameras each write every kind in their own folder, and meta.json says how") {

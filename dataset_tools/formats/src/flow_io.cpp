@@ -1,9 +1,14 @@
 #include "flowscape/formats/flow_io.h"
 
+#include <Imath/half.h>
+
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "flowscape/formats/image_io.h"
@@ -18,6 +23,15 @@ constexpr float kFloMagic = 202021.25f;
 constexpr int kMaxSide = 1 << 16;
 constexpr std::uintmax_t kMaxFloBytes = 12 + 8 * kMaxImagePixels;
 constexpr double kKittiScale = 64.0, kKittiOffset = 32768.0;
+
+struct FlowFormatNames {
+  FlowFormat format;
+  std::string_view name, extension;
+};
+// In FlowFormat's order.
+constexpr FlowFormatNames kFlowFormats[] = {{FlowFormat::Flo, "flo", ".flo"},
+                                            {FlowFormat::KittiPng, "kitti-png", ".png"},
+                                            {FlowFormat::HalfExr, "half-exr", ".exr"}};
 
 std::string at(int x, int y) {
   return " at pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
@@ -100,15 +114,23 @@ Flow read_kitti_png(const std::filesystem::path& path) {
     for (int x = 0; x < png.width; ++x) {
       const std::uint16_t* p = png.pixel(x, y);
       float* f = flow.uv.pixel(x, y);
-      f[0] = float((p[0] - kKittiOffset) / kKittiScale);
-      f[1] = float((p[1] - kKittiOffset) / kKittiScale);
       *flow.valid.pixel(x, y) = p[2] != 0;
+      for (int c = 0; c < 2; ++c)
+        f[c] = p[2] != 0 ? float((p[c] - kKittiOffset) / kKittiScale) : kUnknownFlow;
     }
   return flow;
 }
 
-void write_kitti_png(const std::filesystem::path& path, ImageView<const float> uv,
-                     ImageView<const std::uint8_t> valid) {
+namespace {
+
+double kitti_stored(float f) { return std::round(f * kKittiScale + kKittiOffset); }
+bool in_kitti_range(double stored) { return stored >= 0 && stored <= 65535; }
+
+// KITTI's pixels of the flow: beyond the range refused (`flag` false) or clamped and flagged B = 0
+// (counted in `flagged`).
+Image<std::uint16_t> kitti_pixels(const std::filesystem::path& path, ImageView<const float> uv,
+                                  ImageView<const std::uint8_t> valid, bool flag,
+                                  std::size_t& flagged) {
   require_flow_image(path, uv);
   require_valid_image(path, uv, valid);
   Image<std::uint16_t> png(uv.width, uv.height, 3);
@@ -118,16 +140,39 @@ void write_kitti_png(const std::filesystem::path& path, ImageView<const float> u
       const bool known = is_known_flow(f[0], f[1]) && (!valid.data || *valid.pixel(x, y));
       if (!known) continue;
       std::uint16_t* p = png.pixel(x, y);
+      bool in_range = true;
       for (int c = 0; c < 2; ++c) {
-        const double stored = std::round(f[c] * kKittiScale + kKittiOffset);
-        if (stored < 0 || stored > 65535)
+        const double stored = kitti_stored(f[c]);
+        if (!in_kitti_range(stored) && !flag)
           throw FileError(path, "flow " + std::to_string(f[c]) + at(x, y) +
                                     " exceeds the KITTI PNG range of +-512 px");
-        p[c] = std::uint16_t(stored);
+        in_range = in_range && in_kitti_range(stored);
+        p[c] = std::uint16_t(std::clamp(stored, 0.0, 65535.0));
       }
-      p[2] = 1;
+      p[2] = in_range;
+      flagged += !in_range;
     }
-  write_image(path, png);
+  return png;
+}
+
+// Half-float flow: unknown and beyond +-65504 px as +infinity (counted in `flagged`).
+Image<float> half_exr_flow(ImageView<const float> uv, std::size_t& flagged) {
+  Image<float> stored = stored_flow(FlowFormat::HalfExr, uv);
+  for (std::size_t i = 0; i < stored.pixel_count(); ++i) {
+    float* f = &stored.data[2 * i];
+    if (is_known_flow(f[0], f[1])) continue;
+    flagged += is_known_flow(uv.data[2 * i], uv.data[2 * i + 1]);
+    f[0] = f[1] = std::numeric_limits<float>::infinity();
+  }
+  return stored;
+}
+
+}  // namespace
+
+void write_kitti_png(const std::filesystem::path& path, ImageView<const float> uv,
+                     ImageView<const std::uint8_t> valid) {
+  std::size_t flagged = 0;
+  write_image(path, kitti_pixels(path, uv, valid, false, flagged));
 }
 
 Flow read_flow_exr(const std::filesystem::path& path) {
@@ -135,10 +180,11 @@ Flow read_flow_exr(const std::filesystem::path& path) {
   if (exr.channels < 2)
     throw FileError(path, "flow EXR needs 2 channels (u, v), has " + std::to_string(exr.channels));
   Image<float> uv(exr.width, exr.height, 2);
-  for (std::size_t i = 0; i < uv.pixel_count(); ++i) {
-    uv.data[2 * i] = exr.data[i * exr.channels];
-    uv.data[2 * i + 1] = exr.data[i * exr.channels + 1];
-  }
+  for (std::size_t i = 0; i < uv.pixel_count(); ++i)
+    for (int c = 0; c < 2; ++c) {
+      const float f = exr.data[i * exr.channels + c];
+      uv.data[2 * i + c] = std::isinf(f) ? kUnknownFlow : f;
+    }
   return with_known_mask(path, std::move(uv));
 }
 
@@ -162,6 +208,55 @@ void write_flow(const std::filesystem::path& path, ImageView<const float> uv,
   if (ext == ".png") return write_kitti_png(path, uv, valid);
   if (ext == ".exr") return write_flow_exr(path, uv);
   throw FileError(path, "unknown flow file type '" + ext + "' (use .flo, .png or .exr)");
+}
+
+FlowFormat flow_format_from_name(std::string_view name) {
+  for (const FlowFormatNames& row : kFlowFormats)
+    if (row.name == name) return row.format;
+  throw std::invalid_argument("flow format must be flo, kitti-png or half-exr, not \"" +
+                              std::string(name) + "\"");
+}
+
+std::string_view flow_format_name(FlowFormat format) { return kFlowFormats[int(format)].name; }
+
+std::string_view flow_format_extension(FlowFormat format) {
+  return kFlowFormats[int(format)].extension;
+}
+
+Image<float> stored_flow(FlowFormat format, ImageView<const float> uv) {
+  Image<float> stored(uv.width, uv.height, 2);
+  std::copy_n(uv.data, stored.data.size(), stored.data.begin());
+  if (format == FlowFormat::Flo) return stored;
+  for (std::size_t i = 0; i < stored.pixel_count(); ++i) {
+    float* f = &stored.data[2 * i];
+    bool known = is_known_flow(f[0], f[1]);
+    for (int c = 0; c < 2 && known; ++c) {
+      if (format == FlowFormat::KittiPng) {
+        const double kept = kitti_stored(f[c]);  // read back as read_kitti_png does
+        known = in_kitti_range(kept);
+        f[c] = float((kept - kKittiOffset) / kKittiScale);
+      } else {
+        const Imath::half kept(f[c]);  // round to nearest even, as OpenEXR writes it
+        known = !kept.isInfinity();
+        f[c] = float(kept);
+      }
+    }
+    if (!known) f[0] = f[1] = kUnknownFlow;
+  }
+  return stored;
+}
+
+std::size_t write_flow_as(const std::filesystem::path& path, FlowFormat format,
+                          ImageView<const float> uv) {
+  std::size_t flagged = 0;
+  if (format == FlowFormat::KittiPng)  // zlib level 2 (bench_encoding): half level 6's time
+    write_image<std::uint16_t>(path, kitti_pixels(path, uv, {}, true, flagged).view(), {}, {2});
+  else if (format == FlowFormat::HalfExr)
+    require_flow_image(path, uv),
+        write_image<float>(path, half_exr_flow(uv, flagged).view(), {"u", "v"}, {6, "zip", true});
+  else
+    write_flo(path, uv);
+  return flagged;
 }
 
 }  // namespace flowscape

@@ -211,8 +211,12 @@ Image<T> read_image(const std::filesystem::path& path) {
 }
 
 template <class T>
-void write_image(const std::filesystem::path& path, ImageView<const T> image,
-                 const std::vector<std::string>& channel_names) {
+std::vector<unsigned char> encode_image(const std::filesystem::path& path, ImageView<const T> image,
+                                        const std::vector<std::string>& channel_names,
+                                        const Compression& compression) {
+  if (compression.png_level < 0 || compression.png_level > 9)
+    throw FileError(
+        path, "PNG compression level " + std::to_string(compression.png_level) + " is not in 0..9");
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out)
     throw FileError(path, "no image writer for this extension: " + first_line(OIIO::geterror()));
@@ -220,7 +224,9 @@ void write_image(const std::filesystem::path& path, ImageView<const T> image,
   if (!channel_names.empty()) spec.channelnames = channel_names;
   // OpenEXR output stamps the write time otherwise; a release must be the same bytes every run
   spec.attribute("DateTime", "");
-  // encoded in memory, so that write_file checks every byte that reaches the disk
+  spec.attribute("png:compressionLevel", compression.png_level);
+  spec.attribute("compression", compression.exr);
+  if (compression.exr_half && std::is_same_v<T, float>) spec.set_format(OIIO::TypeDesc::HALF);
   std::vector<unsigned char> encoded;
   OIIO::Filesystem::IOVecOutput memory(encoded);
   if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
@@ -228,18 +234,38 @@ void write_image(const std::filesystem::path& path, ImageView<const T> image,
   if (!out->open(path.string(), spec) || !out->write_image(type_of<T>(), image.data) ||
       !out->close())
     throw FileError(path, "cannot encode image: " + first_line(out->geterror()));
+  return encoded;
+}
+
+template <class T>
+void write_image(const std::filesystem::path& path, ImageView<const T> image,
+                 const std::vector<std::string>& channel_names, const Compression& compression) {
+  // encoded in memory, so that write_file checks every byte that reaches the disk
+  const std::vector<unsigned char> encoded = encode_image(path, image, channel_names, compression);
   write_file(path, {reinterpret_cast<const char*>(encoded.data()), encoded.size()});
 }
 
 template Image<std::uint8_t> read_image(const std::filesystem::path&);
 template Image<std::uint16_t> read_image(const std::filesystem::path&);
 template Image<float> read_image(const std::filesystem::path&);
+template std::vector<unsigned char> encode_image(const std::filesystem::path&,
+                                                 ImageView<const std::uint8_t>,
+                                                 const std::vector<std::string>&,
+                                                 const Compression&);
 template void write_image(const std::filesystem::path&, ImageView<const std::uint8_t>,
-                          const std::vector<std::string>&);
+                          const std::vector<std::string>&, const Compression&);
+template std::vector<unsigned char> encode_image(const std::filesystem::path&,
+                                                 ImageView<const std::uint16_t>,
+                                                 const std::vector<std::string>&,
+                                                 const Compression&);
 template void write_image(const std::filesystem::path&, ImageView<const std::uint16_t>,
-                          const std::vector<std::string>&);
+                          const std::vector<std::string>&, const Compression&);
+template std::vector<unsigned char> encode_image(const std::filesystem::path&,
+                                                 ImageView<const float>,
+                                                 const std::vector<std::string>&,
+                                                 const Compression&);
 template void write_image(const std::filesystem::path&, ImageView<const float>,
-                          const std::vector<std::string>&);
+                          const std::vector<std::string>&, const Compression&);
 
 Image<std::uint8_t> jpeg_round_trip(ImageView<const std::uint8_t> rgb, int quality) {
   if (rgb.channels != 3 || quality < 1 || quality > 100)

@@ -76,9 +76,10 @@ FlowDataset flowscape_release(const fs::path& root, const std::string& pass) {
   const std::string image_kind = pass == "final" ? "final" : "color";
   if (!layout.has(image_kind))
     throw FileError(root, "the release has no final pass (gen_flowscape --outputs final makes it)");
-  const ReleaseKind color = output_kind(image_kind), flow = output_kind("flow"),
-                    valid = output_kind("valid"), back = output_kind("flow_backward"),
+  const ReleaseKind color = output_kind(image_kind), valid = output_kind("valid"),
                     back_valid = output_kind("valid_backward");
+  ReleaseKind flow = output_kind("flow"), back = output_kind("flow_backward");
+  flow.flow_format = back.flow_format = layout.flow_format;  // files as the release stores them
   for (const fs::path& seq : sorted_dirs(sequence_dir(root, ""))) {
     const SequenceMeta meta = read_meta(seq);
     for (const View& view : layout.views()) {

@@ -42,6 +42,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
   visit("asset_packs", c.asset_packs);
   visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
+  visit("flow_format", c.flow_format);
   visit("rig_mount", c.rig_mount), visit("scale", c.scale), visit("scenarios", c.scenarios);
   visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
   visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
@@ -108,6 +109,11 @@ void validate(const ReleaseConfig& c) {
   require(c.lens_drops >= -1 && c.lens_drops <= 200,
           "lens_drops must be in -1..200 (-1: in rain only)");
   require(c.lens_dirt >= 0 && c.lens_dirt <= 1, "lens_dirt must be in 0..1");
+  try {
+    flow_format_from_name(c.flow_format);
+  } catch (const std::invalid_argument& e) {
+    require(false, e.what());
+  }
   require(c.scale > 0 && c.scale <= 4, "scale must be in (0, 4]");
   require(c.scale == 1 || is_rig_file(c.rig),
           "scale is for a rig file or calibration: the " + c.rig + " rig is sized by resolution");
@@ -166,7 +172,8 @@ Rig release_rig(const ReleaseConfig& c) {
 }
 
 ReleaseLayout release_layout(const ReleaseConfig& c) {
-  ReleaseLayout layout = ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube);
+  ReleaseLayout layout =
+      ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube, flow_format_from_name(c.flow_format));
   for (const RigCamera& camera : release_rig(c).cameras)
     layout.cameras.push_back(
         {camera.name, camera.projection.kind == Projection::Kind::Equirectangular});

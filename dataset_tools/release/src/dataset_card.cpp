@@ -172,7 +172,9 @@ void conventions_section(std::ostringstream& md, const ReleaseConfig& c) {
   md << "\n## Conventions\n\nAs `" << kManifestFile
      << "` states them for programs (`conventions`); each kind's `step` in its `layout` says which "
         "frame a flow goes to.\n\n```json\n"
-     << conventions_json(c.classes, release_frame_rates(c)).dump(1) << "\n```\n";
+     << conventions_json(c.classes, release_frame_rates(c), flow_format_from_name(c.flow_format))
+            .dump(1)
+     << "\n```\n";
 }
 
 void classes_section(std::ostringstream& md, const ReleaseConfig& c) {
@@ -268,8 +270,8 @@ void write_dataset_card(const fs::path& out, const ReleaseConfig& config,
     std::vector<std::vector<Image<std::uint8_t>>> rows;  // the ERP, or each camera of the rig
     for (const View& view : layout.views())
       if (!view.face)
-        rows.push_back(
-            frame_preview_row(sequence_dir(out, plan.name), 0, 512, view, config.classes));
+        rows.push_back(frame_preview_row(sequence_dir(out, plan.name), 0, 512, view, config.classes,
+                                         layout.flow_format));
     write_image(out / example_file(plan.weather), contact_sheet(rows));
     examples.push_back(plan.weather);
   }

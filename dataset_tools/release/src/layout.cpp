@@ -76,6 +76,10 @@ std::string ReleaseKind::name() const {
   return std::string(row->name) + (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
 }
 
+std::string_view ReleaseKind::extension() const {
+  return row->is_flow() ? flow_format_extension(flow_format) : row->extension;
+}
+
 std::string ReleaseKind::folder() const {
   return std::string(row->folder) + (gap > 1 ? std::string(kGapSuffix) + std::to_string(gap) : "");
 }
@@ -129,8 +133,17 @@ void check_picked(const std::vector<std::string>& picked) {
 
 }  // namespace
 
+namespace {
+
+void set_flow_format(ReleaseLayout& layout, FlowFormat format) {
+  layout.flow_format = format;
+  for (ReleaseKind& kind : layout.kinds) kind.flow_format = format;
+}
+
+}  // namespace
+
 ReleaseLayout ReleaseLayout::of(const std::vector<std::string>& picked,
-                                const std::vector<int>& gaps, bool cube) {
+                                const std::vector<int>& gaps, bool cube, FlowFormat flow_format) {
   if (std::find(gaps.begin(), gaps.end(), 1) == gaps.end())
     throw std::invalid_argument("flow gaps must include 1 (the flow every tool reads)");
   for (int gap : gaps)
@@ -157,6 +170,7 @@ ReleaseLayout ReleaseLayout::of(const std::vector<std::string>& picked,
     for (int gap : kind.per_gap ? sorted : std::vector<int>{1})
       layout.kinds.emplace_back(kind, gap);
   }
+  set_flow_format(layout, flow_format);
   return layout;
 }
 
@@ -233,7 +247,7 @@ fs::path view_dir(const View& view) {
 }
 
 fs::path frame_file(const ReleaseKind& kind, const View& view, int frame) {
-  return view_dir(view) / kind.folder() / (frame_name(frame) + std::string(kind.row->extension));
+  return view_dir(view) / kind.folder() / (frame_name(frame) + std::string(kind.extension()));
 }
 
 fs::path erp_file(const fs::path& sequence, std::string_view kind, int frame) {
@@ -252,7 +266,7 @@ nlohmann::json layout_json(const ReleaseLayout& layout) {
     const OutputKind& k = *kind.row;
     kinds.push_back({{"name", kind.name()},
                      {"folder", kind.folder()},
-                     {"extension", k.extension},
+                     {"extension", kind.extension()},
                      {"pixel_type", pixel_type_name(k.pixel)},
                      {"channels", k.channels},
                      {"resampling", resampling_name(k.resampling)},
@@ -280,13 +294,39 @@ nlohmann::json layout_json(const ReleaseLayout& layout) {
           {"frame_file", "{view}/{folder}/{frame:06d}{extension}"},
           {"split_file", std::string(kSplitsDir) + "/{split}.txt"},
           {"cube_faces", layout.cube},
+          {"flow_format", flow_format_name(layout.flow_format)},
           {"kinds", kinds}};
 }
 
+namespace {
+
+// The flow conventions' keys of its file, by format (flow_io.h's FlowFormat): what it holds, its
+// precision and range, and how flow beyond the range is marked.
+void add_flow_file(FlowFormat format, nlohmann::json& flow) {
+  if (format == FlowFormat::KittiPng) {
+    flow["file"] = "KITTI 16-bit PNG: R = u * 64 + 2^15, G = v * 64 + 2^15, B = 1 where known";
+    flow["file_precision"] = "1/64 px steps (rounded to nearest)";
+    flow["file_range"] = "[-512, 511.984] px";
+    flow["file_out_of_range"] = "B = 0 (unknown), the value clamped to the range, never wrapped";
+  } else if (format == FlowFormat::HalfExr) {
+    flow["file"] = "OpenEXR, half-float channels u, v; unknown flow +inf";
+    flow["file_precision"] =
+        "11 significant bits (nearest even): 1/8 px steps from 128 px, 1/4 px from 256 px, 1/2 "
+        "px from 512 px";
+    flow["file_range"] = "+-65504 px";
+    flow["file_out_of_range"] = "+inf: unknown";
+  } else {
+    flow["file"] = "Middlebury .flo: float32 little-endian, tag 202021.25, width, height, u v";
+    flow["file_precision"] = "float32";
+  }
+}
+
+}  // namespace
+
 nlohmann::json conventions_json(const std::string& class_table_name,
-                                const std::vector<double>& frame_rates) {
+                                const std::vector<double>& frame_rates, FlowFormat flow_format) {
   const ClassTable& table = class_table(class_table_name);
-  return {
+  nlohmann::json conventions = {
       {"frame_rate", frame_rates.size() == 1 ? nlohmann::json(frame_rates[0])
                                              : nlohmann::json{{"per_sequence", "meta.json fps"},
                                                               {"rates", frame_rates}}},
@@ -310,8 +350,7 @@ nlohmann::json conventions_json(const std::string& class_table_name,
         {"sky", "finite: the rig's rotation only (points at infinity)"},
         {"occluded", "kept: exact flow, the valid mask is 0"},
         {"unknown_value", kUnknownFlow},
-        {"unknown_where", "the target is behind a pinhole camera"},
-        {"file", "Middlebury .flo: float32 little-endian, tag 202021.25, width, height, u v"}}},
+        {"unknown_where", "the target is behind a pinhole camera"}}},
       {"valid",
        {{"1", "the flow target is in front of the camera and visible in the target frame"},
         {"0", "occluded, behind the camera, or unknown"}}},
@@ -338,6 +377,8 @@ nlohmann::json conventions_json(const std::string& class_table_name,
       {"boxes_2d",
        {{"value", "[instance, x0, y0, x1, y1] in pixel edges, x1 and y1 exclusive"},
         {"erp_wrap", "x1 <= x0: the box crosses the seam (columns x0..W-1, then 0..x1-1)"}}}};
+  add_flow_file(flow_format, conventions["flow"]);
+  return conventions;
 }
 
 ReleaseLayout layout_from_json(const nlohmann::json& json) {
@@ -352,6 +393,7 @@ ReleaseLayout layout_from_json(const nlohmann::json& json) {
     if (!kind) throw std::invalid_argument("unknown output kind \"" + name + "\"");
     layout.kinds.push_back(*kind);
   }
+  set_flow_format(layout, flow_format_from_name(json.value("flow_format", "flo")));
   return layout;
 }
 

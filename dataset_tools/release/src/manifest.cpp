@@ -171,7 +171,8 @@ void write_manifest(const fs::path& out, const ReleaseConfig& config, const nloh
       {"config", to_json(config)},
       {"counts", counts(config)},
       {"layout", layout_json(release_layout(config))},
-      {"conventions", conventions_json(config.classes, release_frame_rates(config))},
+      {"conventions", conventions_json(config.classes, release_frame_rates(config),
+                                       flow_format_from_name(config.flow_format))},
       {"files", all}};
   if (!statistics.is_null()) manifest["statistics"] = statistics;
   write_text(out / kManifestFile, manifest.dump(1) + "\n");

@@ -11,9 +11,12 @@ namespace flowscape {
 namespace fs = std::filesystem;
 
 std::vector<Image<std::uint8_t>> frame_preview_row(const fs::path& dir, int frame, int width,
-                                                   const View& view, const std::string& classes) {
-  const auto file = [&](const char* kind) {
-    return dir / frame_file(output_kind(kind), view, frame);
+                                                   const View& view, const std::string& classes,
+                                                   FlowFormat flow_format) {
+  const auto file = [&](const char* name) {
+    ReleaseKind kind = output_kind(name);
+    kind.flow_format = flow_format;
+    return dir / frame_file(kind, view, frame);
   };
   const Image<std::uint8_t> color = read_image<std::uint8_t>(file("color"));
   Image<std::uint8_t> flow(color.width, color.height, 3);

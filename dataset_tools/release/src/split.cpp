@@ -36,8 +36,9 @@ std::string pair_lines(const std::vector<SequenceInfo>& sequences) {
 // The release's ERP flow of a frame in the tree's conventions: classic or 360-degree, and sky
 // (infinite depth) and, if asked, occluded pixels (valid = 0) marked unknown (kUnknownFlow), which
 // the public loader's |u|, |v| < 1000 mask drops.
-Image<float> panoflow_flow(const fs::path& sequence, int frame, const PanoflowOptions& o) {
-  Image<float> flow = read_flo(erp_file(sequence, "flow", frame)).uv;
+Image<float> panoflow_flow(const fs::path& sequence, const ReleaseKind& flow_kind, int frame,
+                           const PanoflowOptions& o) {
+  Image<float> flow = read_flow(sequence / frame_file(flow_kind, View(), frame)).uv;
   const Image<float> depth =
       o.sky_invalid ? read_image<float>(erp_file(sequence, "depth", frame)) : Image<float>();
   const Image<std::uint8_t> valid =
@@ -157,7 +158,8 @@ nlohmann::json to_json(const PanoflowOptions& o) {
 std::vector<std::string> write_panoflow_tree(const fs::path& release, const Split& split,
                                              const PanoflowOptions& options) {
   const fs::path tree = release / "panoflow", conventions = tree / "flowscape.json";
-  if (options.final_pass && !read_release_layout(release).has("final"))
+  const ReleaseLayout layout = read_release_layout(release);
+  if (options.final_pass && !layout.has("final"))
     throw FileError(release, "the release has no final pass (gen_flowscape --outputs final)");
   if (fs::exists(tree) && (!fs::exists(conventions) || read_json(conventions) != to_json(options)))
     fs::remove_all(tree);  // made with other conventions or pass: none of its files can be kept
@@ -193,7 +195,8 @@ std::vector<std::string> write_panoflow_tree(const fs::path& release, const Spli
     const fs::path target = job.target / (name + (job.flow ? ".flo" : ".jpg"));
     if (is_complete_file(target)) return;  // resumed: whole files only
     if (job.flow)
-      write_flo(target, panoflow_flow(job.sequence, job.frame, options).view());
+      write_flo(target,
+                panoflow_flow(job.sequence, *layout.find("flow"), job.frame, options).view());
     else
       write_image(target, read_image<std::uint8_t>(erp_file(
                               job.sequence, options.final_pass ? "final" : "color", job.frame)));

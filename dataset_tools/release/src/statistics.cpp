@@ -87,9 +87,10 @@ FrameStatistics frame_statistics(ImageView<const float> flow, ImageView<const st
   return s;
 }
 
-FrameStatistics frame_statistics(const fs::path& dir, const View& view, int frame, int frames) {
-  const auto file = [&](const char* kind) {
-    return dir / frame_file(output_kind(kind), view, frame);
+FrameStatistics frame_statistics(const fs::path& dir, const ReleaseLayout& layout, const View& view,
+                                 int frame, int frames) {
+  const auto file = [&](const char* kind) {  // of the kinds every layout has
+    return dir / frame_file(*layout.find(kind), view, frame);
   };
   const Image<std::uint8_t> semantic = read_image<std::uint8_t>(file("semantic"));
   const auto same_size = [&](const fs::path& path, const auto& image, int channels) {
@@ -119,7 +120,7 @@ nlohmann::json sequence_statistics_from_files(const fs::path& dir, const Release
   const View view = statistics_view(layout);
   std::vector<FrameStatistics> statistics(static_cast<std::size_t>(frames));
   for (int f = 0; f < frames; ++f)
-    statistics[std::size_t(f)] = frame_statistics(dir, view, f, frames);
+    statistics[std::size_t(f)] = frame_statistics(dir, layout, view, f, frames);
   return sequence_statistics_json(view, statistics, poses, fps, classes);
 }
 

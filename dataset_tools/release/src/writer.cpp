@@ -75,12 +75,16 @@ constexpr PixelType pixel_type() {
 }
 
 template <class T>
-void write_output(const fs::path& path, const OutputKind& kind, ImageView<const T> image) {
-  if (pixel_type<T>() != kind.pixel || image.channels != kind.channels)
+void write_output(const fs::path& path, const ReleaseKind& kind, ImageView<const T> image) {
+  const OutputKind& row = *kind.row;
+  if (pixel_type<T>() != row.pixel || image.channels != row.channels)
     throw std::logic_error(path.string() + ": the image does not match its output kind's row");
   if constexpr (std::is_same_v<T, float>)
-    if (kind.is_flow()) return write_flo(path, image);
-  write_image(path, image);
+    if (row.is_flow()) {
+      write_flow_as(path, kind.flow_format, image);  // flow beyond the format's range flagged
+      return;
+    }
+  write_image(path, image, {}, {row.png_level});
 }
 
 // Writes the kinds a view has at `frame`, from its images (a cube face's: its part of the six
@@ -92,7 +96,7 @@ void write_view(const fs::path& dir, const ReleaseLayout& layout, const View& vi
     if (!in_view(kind, view) || !kind.has_frame(frame, frames)) continue;
     std::visit(
         [&](const auto& image) {
-          write_output(dir / frame_file(kind, view, frame), *kind.row, face_of(image.view()));
+          write_output(dir / frame_file(kind, view, frame), kind, face_of(image.view()));
         },
         images.at(kind.name()));
   }
@@ -110,13 +114,16 @@ void write_cube(const fs::path& dir, const ReleaseLayout& layout, int frame, int
                [face](auto image) { return face_view(image, face); });
 }
 
-// The statistics of a view's frame, from its images before they are written.
-FrameStatistics statistics_of(const ViewImages& images, int frame, int frames) {
+// The statistics of a view's frame, from its images before they are written (the flow as its
+// files give it back, so that statistics read back from the files on resume are the same).
+FrameStatistics statistics_of(const ViewImages& images, FlowFormat flow_format, int frame,
+                              int frames) {
   const auto image = [&]<class T>(const char* kind, T) {
     return std::get<Image<T>>(images.at(kind)).view();
   };
   const bool flow = has_frame(output_kind("flow"), frame, frames);
-  return frame_statistics(flow ? image("flow", 0.0f) : ImageView<const float>{},
+  const Image<float> stored = flow ? stored_flow(flow_format, image("flow", 0.0f)) : Image<float>{};
+  return frame_statistics(flow ? stored.view() : ImageView<const float>{},
                           flow ? image("valid", std::uint8_t()) : ImageView<const std::uint8_t>{},
                           image("semantic", std::uint8_t()), image("instance", std::uint16_t()));
 }
@@ -176,7 +183,7 @@ FrameStatistics write_frame(const fs::path& dir, const ReleaseLayout& layout, in
       write_single_view(dir, layout, view, frame, frames, view_images);
   }
   const ScopedPhase phase("statistics");
-  return statistics_of(images.views.front().second, frame, frames);
+  return statistics_of(images.views.front().second, layout.flow_format, frame, frames);
 }
 
 FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
@@ -358,7 +365,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   }
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
-  std::optional<ScopedPhase> setting_up(std::in_place, "scene set-up");
+  std::optional<ScopedPhase> setting_up(std::in_place, "scene set-up: city and models");
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
   setting_up.reset();
   // of every frame: those rendered now as they are written, the others read back
@@ -366,7 +373,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   std::vector<FrameStatistics> statistics(std::size_t(config.frames));
   for (int f = 0; f < config.frames; ++f)
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f))
-      statistics[std::size_t(f)] = frame_statistics(dir, view, f, config.frames);
+      statistics[std::size_t(f)] = frame_statistics(dir, layout, view, f, config.frames);
   // the final pass's auto-exposure, frame by frame: frames written before are read back
   const bool final = layout.has("final");
   std::vector<Exposure> exposures(final ? std::size_t(config.frames) : 0);
@@ -395,7 +402,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
       continue;
     }
     if (!renderer) {
-      const ScopedPhase phase("scene set-up");
+      const ScopedPhase phase("scene set-up: BVHs and textures");
       renderer = std::make_unique<Renderer>(sequence.city.scene);
     }
     Exposure* frame_exposure = final ? &exposure : nullptr;

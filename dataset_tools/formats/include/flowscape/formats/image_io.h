@@ -32,11 +32,27 @@ Image<T> read_image(const std::filesystem::path& path);
 // 4:2:0 chroma) and decompression: the artefacts a camera's encoder leaves.
 Image<std::uint8_t> jpeg_round_trip(ImageView<const std::uint8_t> rgb, int quality);
 
-// Writes in T's format (the file type from the extension: .png, .jpg, .exr, ...), atomically.
-// Channel names are optional (formats like EXR store them).
+// How a written image is compressed, losslessly either way: PNG's zlib level (0-9; 6 is libpng's
+// and OpenImageIO's default) and an EXR's compression by OpenEXR's name ("zip", "zips", "piz",
+// "rle", "none"; "zip" is OpenImageIO's default); lossy only with exr_half.
+struct Compression {
+  int png_level = 6;
+  std::string exr = "zip";
+  bool exr_half = false;  // float pixels stored as 16-bit half floats (11 significant bits)
+};
+
+// The bytes of the file `path` names (the file type from its extension: .png, .jpg, .exr, ...),
+// encoded in memory in T's format. Channel names are optional (formats like EXR store them).
+template <class T>
+std::vector<unsigned char> encode_image(const std::filesystem::path& path, ImageView<const T> image,
+                                        const std::vector<std::string>& channel_names = {},
+                                        const Compression& compression = {});
+
+// Writes encode_image's bytes atomically.
 template <class T>
 void write_image(const std::filesystem::path& path, ImageView<const T> image,
-                 const std::vector<std::string>& channel_names = {});
+                 const std::vector<std::string>& channel_names = {},
+                 const Compression& compression = {});
 template <class T>
 void write_image(const std::filesystem::path& path, const Image<T>& image) {
   write_image(path, image.view());

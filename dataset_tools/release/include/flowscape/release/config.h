@@ -94,6 +94,9 @@ struct ReleaseConfig {
   int lens_drops = -1;
   double lens_dirt = 0;
   std::vector<int> flow_gaps{1};
+  // How the flow kinds are stored (formats/flow_io.h, FlowFormat): "flo" (Middlebury float32, the
+  // PanoFlow tree's), "kitti-png" (16-bit, 1/64 px within +-512 px), "half-exr" (half floats).
+  std::string flow_format = "flo";
   // The cameras: "flowscape" (the ERP and, with `cube`, the six faces at the rig's origin), a
   // preset of renderer/rig.h (fisheye, woodscape, pal, dual-fisheye: images scaled to `height`),
   // a rig file (.json, docs/cameras.md), or a calibration file (.yaml, .yml, .xml: OpenCV's or

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "flowscape/formats/flow_io.h"
 #include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
@@ -42,6 +43,9 @@ struct OutputKind {
   bool per_gap;  // one kind per gap of the release's flow gaps (ReleaseKind)
   bool always;   // in every release (the FlowScape six); the others are picked (--outputs)
   std::string_view description;  // for the dataset card and docs
+  // A PNG kind's zlib level: 6 (libpng's default) but where bench_encoding found a lower one
+  // pays (colour: a quarter of the time for 8 % more bytes; ids and masks compress fast at 6).
+  int png_level = 6;
 
   constexpr bool is_flow() const { return resampling == Resampling::Flow; }
 };
@@ -49,7 +53,7 @@ struct OutputKind {
 // Every kind a release can hold (docs/release.md, "Output kinds", has each one's definition).
 inline constexpr std::array<OutputKind, 14> kOutputKinds{{
     {"color", "color", ".png", PixelType::UInt8, 3, Resampling::Bilinear, true, true,
-     Direction::None, false, true, "8-bit sRGB PNG, path traced"},
+     Direction::None, false, true, "8-bit sRGB PNG, path traced", 2},
     {"flow", "flow", ".flo", PixelType::Float32, 2, Resampling::Flow, true, true,
      Direction::Forward, true, true,
      "flow from frame F to F + gap in pixels (u right, v down), Middlebury .flo (360-degree on "
@@ -86,7 +90,8 @@ inline constexpr std::array<OutputKind, 14> kOutputKinds{{
      "8-bit sRGB PNG, the final pass: motion blur traced over the shutter, auto-exposure, lens "
      "glare and vignetting, shot and read noise, a filmic tone curve (meta.json `final`); the "
      "ground truth is the frame time's; opt-in (--outputs final): a second path trace, about "
-     "2.5x the clean release's time"},
+     "2.5x the clean release's time",
+     2},
     {"time", "time", ".exr", PixelType::Float32, 1, Resampling::Nearest, true, true,
      Direction::None, false, false,
      "float EXR, seconds since the sequence's start at which the pixel was captured: the frame's "
@@ -106,10 +111,12 @@ const OutputKind& output_kind(std::string_view name);
 struct ReleaseKind {
   const OutputKind* row;
   int gap = 1;
+  FlowFormat flow_format = FlowFormat::Flo;  // a flow kind's file: the release's --flow-format
   ReleaseKind(const OutputKind& kind, int gap = 1) : row(&kind), gap(gap) {}  // NOLINT: implicit
 
   std::string name() const;
   std::string folder() const;
+  std::string_view extension() const;                     // the row's, or a flow kind's format's
   int step() const { return int(row->direction) * gap; }  // frame F connects to F + step
   // Whether a sequence of `frames` frames has this kind at `frame` (both ends inside it).
   bool has_frame(int frame, int frames) const;
@@ -161,6 +168,7 @@ struct ReleaseLayout {
   std::vector<ReleaseKind> kinds;
   bool cube = true;
   std::vector<LayoutCamera> cameras;  // non-empty: another rig than flowscape (no ERP, no faces)
+  FlowFormat flow_format = FlowFormat::Flo;  // every flow kind's (ReleaseKind::flow_format)
 
   bool has_erp() const { return cameras.empty(); }
   std::vector<View> views() const;  // the ERP, the faces, or the cameras
@@ -168,7 +176,7 @@ struct ReleaseLayout {
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.
   // Throws std::invalid_argument naming what is wrong.
   static ReleaseLayout of(const std::vector<std::string>& picked, const std::vector<int>& gaps,
-                          bool cube);
+                          bool cube, FlowFormat flow_format = FlowFormat::Flo);
   const ReleaseKind* find(std::string_view name) const;  // null when the release lacks it
   bool has(std::string_view name) const { return find(name) != nullptr; }
   // Every file of one frame, relative to the sequence folder.
@@ -214,9 +222,11 @@ nlohmann::json layout_json(const ReleaseLayout& layout);
 // programs to read (docs/release.md, "Conventions"): flow direction, units, axes, the ERP seam,
 // sky and invalid values, depth, frames and time, the semantic class table (classes.h).
 // `frame_rates`: the release's (scenario.h's release_frame_rates); several are listed with
-// "per sequence" (meta.json's fps).
+// "per sequence" (meta.json's fps). The flow's file as `flow_format` stores it, with its precision
+// and range.
 nlohmann::json conventions_json(const std::string& class_table_name = "carla-0.9.13",
-                                const std::vector<double>& frame_rates = {kFrameRate});
+                                const std::vector<double>& frame_rates = {kFrameRate},
+                                FlowFormat flow_format = FlowFormat::Flo);
 // The kinds a manifest's layout lists (a release from before they were listed: FlowScape's six);
 // throws std::invalid_argument for kinds it does not know.
 ReleaseLayout layout_from_json(const nlohmann::json& layout);

@@ -38,9 +38,10 @@ struct FrameStatistics {
 FrameStatistics frame_statistics(ImageView<const float> flow, ImageView<const std::uint8_t> valid,
                                  ImageView<const std::uint8_t> semantic,
                                  ImageView<const std::uint16_t> instance);
-// The same from a frame's files (a frame a resumed run did not render).
-FrameStatistics frame_statistics(const std::filesystem::path& sequence_dir, const View& view,
-                                 int frame, int frames);
+// The same from a frame's files (a frame a resumed run did not render), found by the layout.
+FrameStatistics frame_statistics(const std::filesystem::path& sequence_dir,
+                                 const ReleaseLayout& layout, const View& view, int frame,
+                                 int frames);
 
 // The view statistics are taken of: the ERP, or the first camera of another rig.
 View statistics_view(const ReleaseLayout& layout);
