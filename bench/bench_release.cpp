@@ -7,7 +7,10 @@
 // detailed actors' cost over them (target: at most 15 %); and the same release with the final pass
 // (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %).
 // First, flowscape 0.10's order (each frame written before the next renders) against writing a
-// frame while the next renders, with how many cores were busy, and where the time went by phase.
+// frame while the next renders, with how many cores were busy, and where the time went by phase;
+// then each renderer lever against flowscape 0.11's path tracer (RenderOptions switches it back):
+// the cube faces' path tracing of the first frame of each sequence of the fixed sample below,
+// alternating, median of max(runs, 1), and whether any colour changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
 // time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
 // Usage: bench_release [frames = 4] [threads = 2] [runs = 0]
@@ -120,6 +123,85 @@ void print_profile(const Measured& m, int frames) {
                 100 * p.seconds / m.wall, p.calls);
 }
 
+// The six faces' colour layers of one frame and the rays they took, timed.
+struct FacesColor {
+  std::vector<ColorLayers> faces;
+  std::uint64_t rays = 0;
+  double seconds = 0;
+};
+
+FacesColor faces_color(Renderer& renderer, int face_size, const FramePair& pair,
+                       const RenderOptions& options) {
+  FacesColor out;
+  const auto start = std::chrono::steady_clock::now();
+  for (Face face : kFaces) {
+    RenderStats stats;
+    out.faces.push_back(
+        renderer.color_layers(Projection::cube_face(face, face_size), pair, options, &stats));
+    out.rays += stats.rays;
+  }
+  out.seconds = seconds_since(start);
+  return out;
+}
+
+bool same_pixels(const FacesColor& a, const FacesColor& b) {
+  for (std::size_t f = 0; f < a.faces.size(); ++f)
+    for (auto layer :
+         {&ColorLayers::direct, &ColorLayers::indirect, &ColorLayers::specular, &ColorLayers::other,
+          &ColorLayers::albedo, &ColorLayers::normal, &ColorLayers::variance})
+      if ((a.faces[f].*layer).data != (b.faces[f].*layer).data) return false;
+  return true;
+}
+
+// One renderer lever (or all of them) against flowscape 0.11's path tracer: RenderOptions with
+// 0.11's way switched back on.
+struct Lever {
+  const char* name;
+  void (*as_before)(RenderOptions&);
+};
+constexpr Lever kLevers[] = {{"the averaged sky after a diffuse event",
+                              [](RenderOptions& o) { o.full_sky_when_scattered = true; }}};
+
+// Each lever on its own: the cube faces' path tracing of the first frame of each sequence of the
+// fixed sample with 0.11's path tracer and with the lever, alternating, the median of `runs`, and
+// whether every pixel of every layer stayed the same.
+void print_render_levers(const ReleaseConfig& config, const std::vector<SequencePlan>& sample,
+                         int runs) {
+  runs = std::max(1, runs);
+  std::printf(
+      "  renderer levers, each against 0.11's path tracer: the cube faces' path tracing of the "
+      "sample's first frames, median of %d\n",
+      runs);
+  for (const Lever& lever : kLevers) {
+    double before = 0, after = 0;
+    std::uint64_t rays = 0;
+    bool same = true;
+    for (const SequencePlan& plan : sample) {
+      const Sequence sequence = make_sequence(sequence_spec(config, plan));
+      Renderer renderer(sequence.city.scene);
+      const RenderOptions with_lever = sequence.color_options(config, 0);
+      RenderOptions old = with_lever;
+      lever.as_before(old);
+      std::vector<double> times[2];
+      for (int run = 0; run < runs; ++run) {
+        const FramePair pair = sequence.frame_pair(0);
+        const FacesColor a = faces_color(renderer, config.face_size, pair, old);
+        const FacesColor b = faces_color(renderer, config.face_size, pair, with_lever);
+        times[0].push_back(a.seconds), times[1].push_back(b.seconds);
+        same = same && same_pixels(a, b);
+        if (run == 0) rays += a.rays;
+      }
+      for (auto& t : times) std::sort(t.begin(), t.end());
+      before += times[0][times[0].size() / 2], after += times[1][times[1].size() / 2];
+    }
+    const double frames = double(sample.size());
+    std::printf(
+        "    %-40s 0.11 %6.3f s/frame (%5.2f M rays/s), with it %6.3f s/frame: %+5.1f %%, %s\n",
+        lever.name, before / frames, rays / before / 1e6, after / frames,
+        100 * (after / before - 1), same ? "every pixel the same" : "colour changed");
+  }
+}
+
 }  // namespace
 
 // Over the fixed sample, `runs` times each: 0.10's order and the new one, projected to the full
@@ -171,6 +253,10 @@ int main(int argc, char** argv) {
       release, overlapped.cores_busy, threads, overlapped.cores_projected, sequence_frames,
       100 * (release / serial.seconds_per_frame - 1));
   print_profile(overlapped, frames);
+  {
+    ReleaseConfig sampled = config;
+    print_render_levers(sampled, fixed_sample(sampled), runs);
+  }
   ReleaseConfig legacy = config;
   legacy.actors = "legacy";
   const double boxes = seconds_per_frame(legacy, out, sequence_frames);

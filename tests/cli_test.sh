@@ -59,6 +59,7 @@ check "gen_flowscape: --threads -1 names its range briefly" fails_clearly 'not i
 check "gen_flowscape: --maps 3,7 renders those two maps" bash -c "'$bin/gen_flowscape' --maps 3,7 --frames 2 --check --out '$work/m' | grep -q '^16 sequences'"
 check "gen_flowscape: --maps 5, renders map 5 alone" bash -c "'$bin/gen_flowscape' --maps 5, --frames 2 --check --out '$work/m' | grep -q '^8 sequences'"
 check "gen_flowscape: a map out of range" fails_clearly "map_list must hold different map numbers in 0..7" "$bin/gen_flowscape" --maps 8, --frames 2 --check --out "$work/m"
+check "gen_flowscape: an unknown flow format names the three" fails_clearly 'flow format must be flo, kitti-png or half-exr, not "kitti"' "$bin/gen_flowscape" --flow-format kitti --check --out "$work/m"
 check "gen_flowscape: --no-cube with a lens rig" fails_clearly '--no-cube: only the flowscape rig has cube faces' "$bin/gen_flowscape" --rig fisheye --no-cube --check --out "$work/m"
 cat >"$work/rig.json" <<'JSON'
 {"name": "one", "cameras": [{"name": "front", "model": "pinhole",

@@ -123,16 +123,50 @@ LampLights::Sample LampLights::sample(const Vec3& point, const Vec3& normal, dou
           lamp.intensity * (beam(lamp, -to_lamp / distance) / d2 / probability), total};
 }
 
-SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
-  if (!dome_) return;
-  const std::size_t cells = dome_->radiance.size();
+namespace {
+
+// The largest block of up to 8 x 8 cells that tiles the dome.
+int block_side(const SkyDome& dome) {
+  int side = 8;
+  while (dome.rows % side != 0 || dome.columns % side != 0) side /= 2;
+  return side;
+}
+
+// The dome averaged over blocks of cells, each cell weighted by its solid angle (the light the
+// block sends is the light its cells send).
+SkyDome averaged(const SkyDome& dome, int side) {
+  SkyDome out;
+  out.rows = dome.rows / side, out.columns = dome.columns / side;
+  std::vector<Eigen::Vector3d> sums(std::size_t(out.rows) * out.columns, Eigen::Vector3d::Zero());
+  std::vector<double> weights(std::size_t(out.rows), 0.0);
+  const double d_elevation = kPi / 2 / dome.rows;
+  for (int row = 0; row < dome.rows; ++row) {
+    const double weight = std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation);
+    weights[std::size_t(row / side)] += weight * side;
+    for (int column = 0; column < dome.columns; ++column)
+      sums[std::size_t(row / side) * out.columns + column / side] +=
+          weight * dome.radiance[std::size_t(row) * dome.columns + column].cast<double>();
+  }
+  out.radiance.resize(sums.size());
+  for (std::size_t i = 0; i < sums.size(); ++i)
+    out.radiance[i] = (sums[i] / weights[i / std::size_t(out.columns)]).cast<float>();
+  return out;
+}
+
+}  // namespace
+
+SkySampler::SkySampler(const SkyDome* dome, bool average)
+    : empty_(dome == nullptr),
+      dome_(dome ? averaged(*dome, average ? block_side(*dome) : 1) : SkyDome{}) {
+  if (empty_) return;
+  const std::size_t cells = dome_.radiance.size();
   std::vector<double> weights(cells);
   double sum = 0;
-  for (int row = 0; row < dome_->rows; ++row) {
+  for (int row = 0; row < dome_.rows; ++row) {
     const double solid_angle = cell_solid_angle(row);
-    for (std::size_t i = std::size_t(row) * dome_->columns;
-         i < std::size_t(row + 1) * dome_->columns; ++i)
-      sum += weights[i] = luminance(dome_->radiance[i].cast<double>()) * solid_angle;
+    for (std::size_t i = std::size_t(row) * dome_.columns; i < std::size_t(row + 1) * dome_.columns;
+         ++i)
+      sum += weights[i] = luminance(dome_.radiance[i].cast<double>()) * solid_angle;
   }
   // every cell kept possible (the bilinear lookup reaches into dark cells from bright neighbours)
   const double floor = 1e-3 * sum / double(cells);
@@ -140,14 +174,16 @@ SkySampler::SkySampler(const SkyDome* dome) : dome_(dome) {
   double running = 0;
   for (std::size_t i = 0; i < cells; ++i) cumulative_[i] = running += weights[i] + floor;
   for (double& c : cumulative_) c /= running;
-  for (int row = 0; row < dome_->rows; ++row)
-    row_ends_.push_back(cumulative_[std::size_t(row + 1) * dome_->columns - 1]);
-  level_luminance_ = luminance(dome_->horizontal_irradiance().cast<double>());
+  for (int row = 0; row < dome_.rows; ++row)
+    row_ends_.push_back(cumulative_[std::size_t(row + 1) * dome_.columns - 1]);
+  level_luminance_ = luminance(dome_.horizontal_irradiance().cast<double>());
 }
 
+Rgb SkySampler::radiance(const Vec3& d) const { return dome_.at(d).cast<double>(); }
+
 double SkySampler::cell_solid_angle(int row) const {
-  const double d_elevation = kPi / 2 / dome_->rows;
-  return 2 * kPi / dome_->columns *
+  const double d_elevation = kPi / 2 / dome_.rows;
+  return 2 * kPi / dome_.columns *
          (std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation));
 }
 
@@ -157,36 +193,35 @@ Vec3 SkySampler::sample(Vec2 u) const {
   const auto row_end = std::upper_bound(row_ends_.begin(), row_ends_.end(), u.x());
   std::size_t cell = cumulative_.size() - 1;
   if (row_end != row_ends_.end()) {
-    const auto first = cumulative_.begin() + (row_end - row_ends_.begin()) * dome_->columns;
-    cell =
-        std::size_t(std::upper_bound(first, first + dome_->columns, u.x()) - cumulative_.begin());
+    const auto first = cumulative_.begin() + (row_end - row_ends_.begin()) * dome_.columns;
+    cell = std::size_t(std::upper_bound(first, first + dome_.columns, u.x()) - cumulative_.begin());
   }
   const double lo = cell == 0 ? 0 : cumulative_[cell - 1];
   const double across = std::clamp((u.x() - lo) / (cumulative_[cell] - lo), 0.0, 1.0);
-  const int row = int(cell / dome_->columns), column = int(cell % dome_->columns);
-  const double d_elevation = kPi / 2 / dome_->rows;
+  const int row = int(cell / dome_.columns), column = int(cell % dome_.columns);
+  const double d_elevation = kPi / 2 / dome_.rows;
   const double sin_lo = std::sin(row * d_elevation), sin_hi = std::sin((row + 1) * d_elevation);
   const double z = sin_lo + u.y() * (sin_hi - sin_lo), r = std::sqrt(std::max(0.0, 1 - z * z));
-  const SinCos phi = sin_cos(2 * kPi * (column + across) / dome_->columns);
+  const SinCos phi = sin_cos(2 * kPi * (column + across) / dome_.columns);
   return {r * phi.cos, r * phi.sin, z};
 }
 
 double SkySampler::pdf(const Vec3& d) const {
-  if (!dome_ || d.z() < 0) return 0;
+  if (empty_ || d.z() < 0) return 0;
   const int row =
-      std::min(dome_->rows - 1, int(std::asin(std::min(d.z(), 1.0)) / (kPi / 2) * dome_->rows));
+      std::min(dome_.rows - 1, int(std::asin(std::min(d.z(), 1.0)) / (kPi / 2) * dome_.rows));
   double azimuth = std::atan2(d.y(), d.x());
   if (azimuth < 0) azimuth += 2 * kPi;
-  const int column = std::min(dome_->columns - 1, int(azimuth / (2 * kPi) * dome_->columns));
-  const std::size_t cell = std::size_t(row) * dome_->columns + column;
+  const int column = std::min(dome_.columns - 1, int(azimuth / (2 * kPi) * dome_.columns));
+  const std::size_t cell = std::size_t(row) * dome_.columns + column;
   const double p = cumulative_[cell] - (cell == 0 ? 0 : cumulative_[cell - 1]);
   return p / cell_solid_angle(row);
 }
 
-Lights::Lights(const Scene& scene, double time)
+Lights::Lights(const Scene& scene, double time, bool average_sky)
     : environment(scene.environment),
       lamps(scene, time),
-      sky(scene.environment.sky_dome.get()),
+      sky(scene.environment.sky_dome.get(), average_sky),
       sun_frame(frame_around(environment.sun_direction)),
       sun_cos_radius(std::cos(environment.sun_angular_radius)),
       sun_irradiance(environment.sun_irradiance.cast<double>()),
@@ -206,6 +241,10 @@ Rgb Lights::sky_radiance(const Vec3& d) const {
   if (environment.sky_dome) return environment.sky_dome->at(d).cast<double>();
   const double t = std::sqrt(d.z());
   return ((1 - t) * environment.sky_horizon + t * environment.sky_zenith).cast<double>();
+}
+
+Rgb Lights::scattered_sky_radiance(const Vec3& d) const {
+  return d.z() < 0 || sky.empty() ? sky_radiance(d) : sky.radiance(d);
 }
 
 Rgb Lights::sun_radiance(const Vec3& d) const {

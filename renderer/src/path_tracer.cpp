@@ -25,12 +25,19 @@ constexpr double kScatteredSpread = 0.2;
 
 enum Layer { kOther, kDirect, kIndirect, kSpecular, kLayerCount };
 
+// The sky a path finds: sharp from the camera and its specular chains, averaged after a diffuse
+// event (whose cone is wider than the average's blocks).
+Rgb sky_seen(const Lights& lights, const Vec3& dir, bool scattered) {
+  return scattered ? lights.scattered_sky_radiance(dir) : lights.sky_radiance(dir);
+}
+
 // What a vehicle's window mirrors: the sky above, and near the horizon, where buildings and
 // traffic across the street hide the sky, the dim radiance of the dome below it (a pane would
 // otherwise mirror the horizon's glare at the grazing angles it is seen at from the street).
-Rgb mirrored_by_pane(const Lights& lights, const Vec3& dir) {
+Rgb mirrored_by_pane(const Lights& lights, const Vec3& dir, bool scattered) {
   const double open = std::clamp(dir.z() / 0.4, 0.0, 1.0);  // sin 24 degrees
-  return open * lights.sky_radiance(dir) + (1 - open) * lights.environment.ground.cast<double>();
+  return open * sky_seen(lights, dir, scattered) +
+         (1 - open) * lights.environment.ground.cast<double>();
 }
 
 struct PathState {
@@ -45,9 +52,9 @@ struct PathState {
   Vec3 normal = Vec3::Zero();
   // The ray's cone for texture filtering (ray cones): width at the origin (m) and spread (rad).
   double width = 0, spread = 0;
-  // Whether what it meets is textured: after a diffuse event the cone is so wide that a texture
-  // filtered over it is its material's mean.
-  bool textured = true;
+  // Whether it has scattered diffusely: its cone is then so wide that a texture filtered over it is
+  // its material's mean, and the sky it finds the averaged dome.
+  bool scattered = false;
   // Camera rays and specular chains from the camera may see the sun disc itself; after a diffuse
   // event the sun comes through next-event estimation only (no sun caustics: they would be rare,
   // huge fireflies at these sample counts).
@@ -108,8 +115,9 @@ SunRay sky_ray(const Lights& lights, const Surface& s, const Vec3& origin, const
   const double light_pdf = chance * lights.sky.pdf(dir);
   const double bounce_pdf = std::max(0.0, dir.dot(bounce_normal)) / kPi;
   const double fog = lights.foggy() ? std::exp(-lights.optical_depth(origin, dir, kFar)) : 1;
-  const Rgb light = throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sky_radiance(dir)) *
-                    (cos_n / kPi * fog / (light_pdf + bounce_pdf));
+  const Rgb light =
+      throughput.cwiseProduct(s.albedo).cwiseProduct(lights.scattered_sky_radiance(dir)) *
+      (cos_n / kPi * fog / (light_pdf + bounce_pdf));
   return {{origin, dir, true}, light, layer == kDirect ? kIndirect : layer};
 }
 
@@ -178,7 +186,7 @@ void scatter_diffusely(const Lights& lights, const Surface& s, const Vec3& above
   path.sky_chance = sun.sky_chance, path.bounce_normal = s.normal;
   path.throughput = path.throughput.cwiseProduct(s.albedo);
   path.origin = above, path.dir = cosine_direction(s.normal, lobe_sample);
-  path.sun_visible = false, path.spread = kScatteredSpread, path.textured = false;
+  path.sun_visible = false, path.spread = kScatteredSpread, path.scattered = true;
 }
 
 // One bounce of a path at `hit`: the fog before it, what the path sees (sky, sun disc, emission, a
@@ -199,7 +207,7 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
                                         path.sky_chance * lights.sky.pdf(dir))
                               : 1;
     path.light[path.layer] +=
-        throughput.cwiseProduct(lights.sky_radiance(dir) * weight +
+        throughput.cwiseProduct(sky_seen(lights, dir, path.scattered) * weight +
                                 (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
     return false;
   }
@@ -221,7 +229,8 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
     // bounced before end at the pane.
     const double f = schlick(std::abs(dir.dot(s.normal)), 0.04), reflected = 2 * f / (1 + f);
     path.light[first ? kSpecular : path.layer] +=
-        throughput.cwiseProduct(mirrored_by_pane(lights, reflect(dir, s.normal))) * reflected;
+        throughput.cwiseProduct(mirrored_by_pane(lights, reflect(dir, s.normal), path.scattered)) *
+        reflected;
     if (path.layer == kIndirect) return false;
     throughput = throughput.cwiseProduct(s.albedo) * (1 - reflected);
     origin = s.position + offset * dir;
@@ -261,7 +270,7 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
     // about the smooth normal: a texture's relief shows in the sun's light, while the light from
     // everywhere else stays smooth for the denoiser
     origin = above, dir = cosine_direction(s.smooth, lobe_sample);
-    path.sun_visible = false, path.spread = kScatteredSpread, path.textured = false;
+    path.sun_visible = false, path.spread = kScatteredSpread, path.scattered = true;
     path.sky_chance = sun.sky_chance, path.bounce_normal = s.smooth;
   } else if (diffuse) {
     scatter_diffusely(lights, s, above, light_sample, lobe_sample, path, sun);
@@ -355,7 +364,7 @@ void trace_bundle(const FrameContext& frame, PixelLooks& camera_looks, PathState
       if (!bundle[i].active) continue;
       const TexturedLook* look = nullptr;
       TexturedLook own;  // a specular chain's hit: its own point
-      if (frame.textures && hits[i].found && paths[i].textured && is_textured(embree, hits[i])) {
+      if (frame.textures && hits[i].found && !paths[i].scattered && is_textured(embree, hits[i])) {
         if (bounce == 0) {
           look = &camera_looks.at(hits[i], paths[i].dir);
         } else {

@@ -24,11 +24,14 @@ struct Renderer::Impl {
   // cameras) share them.
   std::unique_ptr<const Lights> lights;
   double lights_time = 0;
+  bool lights_average_sky = true;
   explicit Impl(const Scene& scene) : images(scene), embree(scene, &images) {}
 
-  const Lights& lights_at(double time) {
-    if (!lights || lights_time != time)
-      lights = std::make_unique<const Lights>(embree.scene(), time), lights_time = time;
+  const Lights& lights_at(double time, const RenderOptions& options) {
+    const bool average_sky = !options.full_sky_when_scattered;
+    if (!lights || lights_time != time || lights_average_sky != average_sky)
+      lights = std::make_unique<const Lights>(embree.scene(), time, average_sky),
+      lights_time = time, lights_average_sky = average_sky;
     return *lights;
   }
 };
@@ -61,8 +64,8 @@ ColorLayers Renderer::color_layers(const Projection& projection, double time,
   std::uint64_t rays = 0;
   for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
     pose_line(impl_->embree, readout, t);
-    rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t), projection, camera(t),
-                       options, window, out);
+    rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t, options), projection,
+                       camera(t), options, window, out);
   });
   if (stats) stats->rays = rays;
   return out;

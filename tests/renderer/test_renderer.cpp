@@ -375,6 +375,51 @@ TEST_CASE("lamps light the road by the inverse-square law within their beams, an
   CHECK(checked > 300);
 }
 
+TEST_CASE(
+    "a narrow bright ring of the release's 320 x 1280 dome lights a plane as its closed form says, "
+    "through the averaged sky scattered light sees") {
+  // L = 50 on rows 101..106 (elevations e0 = 101/320 x 90, e1 = 107/320 x 90 degrees), across
+  // two of the averaged sky's 8-row blocks: irradiance on a level plane
+  // 2 pi L int_e0^e1 sin e cos e de = pi L (sin^2 e1 - sin^2 e0).
+  Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
+  scene.environment.sun_irradiance = Eigen::Vector3f::Zero();
+  auto dome = std::make_shared<SkyDome>();
+  dome->rows = 320, dome->columns = 1280;
+  dome->radiance.assign(std::size_t(320 * 1280), Eigen::Vector3f::Zero());
+  for (int r = 101; r <= 106; ++r)
+    for (int c = 0; c < 1280; ++c) dome->radiance[std::size_t(r * 1280 + c)].setConstant(50);
+  scene.environment.sky_dome = dome;
+  const double e0 = 101.0 / 320 * kPi / 2, e1 = 107.0 / 320 * kPi / 2;
+  const double irradiance = kPi * 50 * (std::pow(std::sin(e1), 2) - std::pow(std::sin(e0), 2));
+  Renderer renderer(scene);
+  for (bool full_sky : {false, true}) {  // flowscape 0.11 took the dome's own cells
+    RenderOptions options{256, 1, 5};
+    options.full_sky_when_scattered = full_sky;
+    const Image<float> down =
+        renderer.color(Projection::cube_face(Face::Down, 16), FramePair{}, options);
+    double mean = 0;
+    for (std::size_t i = 0; i < down.pixel_count(); ++i) mean += down.data[3 * i];
+    CHECK(mean / double(down.pixel_count()) == Approx(0.5 * irradiance / kPi).epsilon(0.02));
+  }
+  // the camera sees the ring at the dome's own resolution (0.63 rows a pixel here): full radiance
+  // between the ring's cell centres, none beyond its neighbours' (the blocks' average would spread
+  // it over rows 96..111)
+  const Projection front = Projection::cube_face(Face::Front, 512);
+  const Image<float> sky = renderer.color(front, FramePair{}, {1, 1, 5});
+  int ring = 0, beside = 0, wrong = 0;
+  for (int y = 0; y < 512; ++y)
+    for (int x = 0; x < 512; ++x) {
+      const Vec3 d = front.ray(Vec2(x + 0.5, y + 0.5)).normalized();
+      const double row = std::asin(d.z()) / (kPi / 2) * 320;  // the dome's row coordinate
+      const float value = *sky.pixel(x, y);
+      if (row > 102 && row < 106) ++ring, wrong += std::abs(value - 50) > 1e-3f;
+      if ((row > 92 && row < 99.5) || (row > 108.5 && row < 115)) ++beside, wrong += value > 1e-3f;
+    }
+  CHECK(ring > 1000);
+  CHECK(beside > 1000);
+  CHECK(wrong == 0);
+}
+
 TEST_CASE("an emitter glows with its emission, times its night pattern's colour when it has one") {
   Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
   Material& m = scene.materials[0];

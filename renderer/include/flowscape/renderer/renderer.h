@@ -77,6 +77,10 @@ struct RenderOptions {
   // bounces that gather its indirect light), weighted to stand for all; 0: every sample. The rest
   // still bring the camera ray, the sun's direct light, the specular chains and the features.
   int indirect_samples = 0;
+  // flowscape 0.11's path tracer, for bench_release's baseline: paths that scattered diffusely
+  // find the sky at the dome's full resolution (not averaged as SkySampler's: larger tables, more
+  // cache misses).
+  bool full_sky_when_scattered = false;
 };
 
 // A colour frame split the way a denoiser needs it (linear RGB, each averaged over the pixel's
