@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "flowscape/core/profile.h"
@@ -123,54 +124,96 @@ void print_profile(const Measured& m, int frames) {
                 100 * p.seconds / m.wall, p.calls);
 }
 
-// The six faces' colour layers of one frame and the rays they took, timed.
-struct FacesColor {
-  std::vector<ColorLayers> faces;
-  std::uint64_t rays = 0;
+// What a lever's render of one frame gave: its time, rays (colour only) and images.
+struct Rendered {
   double seconds = 0;
+  std::uint64_t rays = 0;
+  std::vector<const std::vector<float>*> floats;  // into `colour` or `truth`
+  std::vector<const std::vector<std::uint8_t>*> bytes;
+  std::vector<const std::vector<std::uint16_t>*> words;
+  std::vector<ColorLayers> colour;
+  std::vector<GroundTruth> truth;
 };
 
-FacesColor faces_color(Renderer& renderer, int face_size, const FramePair& pair,
-                       const RenderOptions& options) {
-  FacesColor out;
+bool same_images(const Rendered& a, const Rendered& b) {
+  const auto same = [](const auto& x, const auto& y) {
+    for (std::size_t i = 0; i < x.size(); ++i)
+      if (std::memcmp(x[i]->data(), y[i]->data(), x[i]->size() * sizeof((*x[i])[0])) != 0)
+        return false;
+    return true;
+  };
+  return same(a.floats, b.floats) && same(a.bytes, b.bytes) && same(a.words, b.words);
+}
+
+// The cube faces' path tracing of a frame (their colour layers).
+Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
+                     const RenderOptions& options) {
+  Rendered out;
   const auto start = std::chrono::steady_clock::now();
   for (Face face : kFaces) {
     RenderStats stats;
-    out.faces.push_back(
+    out.colour.push_back(
         renderer.color_layers(Projection::cube_face(face, face_size), pair, options, &stats));
     out.rays += stats.rays;
   }
   out.seconds = seconds_since(start);
+  for (const ColorLayers& l : out.colour)
+    for (const Image<float>* layer :
+         {&l.direct, &l.indirect, &l.specular, &l.other, &l.albedo, &l.normal, &l.variance})
+      out.floats.push_back(&layer->data);
   return out;
 }
 
-bool same_pixels(const FacesColor& a, const FacesColor& b) {
-  for (std::size_t f = 0; f < a.faces.size(); ++f)
-    for (auto layer :
-         {&ColorLayers::direct, &ColorLayers::indirect, &ColorLayers::specular, &ColorLayers::other,
-          &ColorLayers::albedo, &ColorLayers::normal, &ColorLayers::variance})
-      if ((a.faces[f].*layer).data != (b.faces[f].*layer).data) return false;
-  return true;
+// The ground truth of a frame: the ERP's and the six faces'.
+Rendered frame_truth(Renderer& renderer, const ReleaseConfig& config, const TruthRequest& request) {
+  Rendered out;
+  const auto start = std::chrono::steady_clock::now();
+  out.truth.push_back(renderer.ground_truth(Projection::equirectangular(config.height), request));
+  for (Face face : kFaces)
+    out.truth.push_back(
+        renderer.ground_truth(Projection::cube_face(face, config.face_size), request));
+  out.seconds = seconds_since(start);
+  for (const GroundTruth& t : out.truth) {
+    for (const Image<float>* image :
+         {&t.flow, &t.depth, &t.scene_flow, &t.normal, &t.shading_normal})
+      out.floats.push_back(&image->data);
+    out.bytes.push_back(&t.semantic.data), out.bytes.push_back(&t.valid.data);
+    out.words.push_back(&t.instance.data);
+    for (const FlowTruth& more : t.more)
+      out.floats.push_back(&more.flow.data), out.bytes.push_back(&more.valid.data);
+  }
+  return out;
 }
 
-// One renderer lever (or all of them) against flowscape 0.11's path tracer: RenderOptions with
-// 0.11's way switched back on.
+// A renderer lever: what it renders of a sequence's first frame the old way (flowscape 0.11's)
+// and with the lever.
 struct Lever {
   const char* name;
-  void (*as_before)(RenderOptions&);
+  Rendered (*render)(const ReleaseConfig&, const Sequence&, Renderer&, bool with_lever);
 };
-constexpr Lever kLevers[] = {{"the averaged sky after a diffuse event",
-                              [](RenderOptions& o) { o.full_sky_when_scattered = true; }}};
+constexpr Lever kLevers[] = {
+    {"the averaged sky after a diffuse event (colour)",
+     [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
+       RenderOptions options = sequence.color_options(config, 0);
+       options.full_sky_when_scattered = !with;
+       return faces_color(renderer, config.face_size, sequence.frame_pair(0), options);
+     }},
+    {"ground truth's camera and visibility rays in packets",
+     [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
+       TruthRequest request =
+           truth_plan(sequence, release_layout(config), 0, config.frames).request;
+       request.single_rays = !with;
+       return frame_truth(renderer, config, request);
+     }}};
 
-// Each lever on its own: the cube faces' path tracing of the first frame of each sequence of the
-// fixed sample with 0.11's path tracer and with the lever, alternating, the median of `runs`, and
-// whether every pixel of every layer stayed the same.
+// Each lever on its own against 0.11's way, on the first frame of each sequence of the fixed
+// sample, alternating, the median of `runs`, and whether every image stayed the same.
 void print_render_levers(const ReleaseConfig& config, const std::vector<SequencePlan>& sample,
                          int runs) {
   runs = std::max(1, runs);
   std::printf(
-      "  renderer levers, each against 0.11's path tracer: the cube faces' path tracing of the "
-      "sample's first frames, median of %d\n",
+      "  renderer levers, each against 0.11's renderer on the first frames of the fixed sample, "
+      "median of %d:\n",
       runs);
   for (const Lever& lever : kLevers) {
     double before = 0, after = 0;
@@ -179,26 +222,22 @@ void print_render_levers(const ReleaseConfig& config, const std::vector<Sequence
     for (const SequencePlan& plan : sample) {
       const Sequence sequence = make_sequence(sequence_spec(config, plan));
       Renderer renderer(sequence.city.scene);
-      const RenderOptions with_lever = sequence.color_options(config, 0);
-      RenderOptions old = with_lever;
-      lever.as_before(old);
       std::vector<double> times[2];
       for (int run = 0; run < runs; ++run) {
-        const FramePair pair = sequence.frame_pair(0);
-        const FacesColor a = faces_color(renderer, config.face_size, pair, old);
-        const FacesColor b = faces_color(renderer, config.face_size, pair, with_lever);
+        const Rendered a = lever.render(config, sequence, renderer, false);
+        const Rendered b = lever.render(config, sequence, renderer, true);
         times[0].push_back(a.seconds), times[1].push_back(b.seconds);
-        same = same && same_pixels(a, b);
+        same = same && same_images(a, b);
         if (run == 0) rays += a.rays;
       }
       for (auto& t : times) std::sort(t.begin(), t.end());
       before += times[0][times[0].size() / 2], after += times[1][times[1].size() / 2];
     }
     const double frames = double(sample.size());
-    std::printf(
-        "    %-40s 0.11 %6.3f s/frame (%5.2f M rays/s), with it %6.3f s/frame: %+5.1f %%, %s\n",
-        lever.name, before / frames, rays / before / 1e6, after / frames,
-        100 * (after / before - 1), same ? "every pixel the same" : "colour changed");
+    std::printf("    %-48s 0.11 %6.3f s/frame", lever.name, before / frames);
+    if (rays > 0) std::printf(" (%5.2f M rays/s)", rays / before / 1e6);
+    std::printf(", with it %6.3f s/frame: %+5.1f %%, %s\n", after / frames,
+                100 * (after / before - 1), same ? "every byte the same" : "images changed");
   }
 }
 

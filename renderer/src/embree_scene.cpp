@@ -14,9 +14,6 @@ namespace flowscape {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-// The visibility ray stops this fraction short of the target, so the target's own surface does not
-// count as an occluder (float hit points are good to about 1e-6 of their distance).
-constexpr double kVisibilityMargin = 1e-4;
 
 // Embree's filter: a hit on a hole of an alpha mask is no hit; nor is a window to the sun's rays.
 void coverage_filter(const RTCFilterFunctionNArguments* args) {
@@ -130,6 +127,40 @@ void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& pack
     packet.tnear[i] = 0, packet.tfar[i] = rays[i].far, packet.mask[i] = mask;
     packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
   }
+}
+
+// Up to kBundleSize rays as one Embree packet, those `mask` lets through.
+void intersect_packet(RTCScene scene, const BundleRay* rays, int count, unsigned mask, Hit* hits) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[kBundleSize];
+  fill_packet(rays, count, mask, packet.ray, valid);
+  std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
+  std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
+  rtcIntersect16(valid, scene, &context, &packet);
+  const RTCHit16& hit = packet.hit;
+  for (int i = 0; i < count; ++i)
+    hits[i] = !valid[i] || hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+                  ? Hit{}
+                  : Hit{true,
+                        hit.instID[0][i],
+                        hit.primID[i],
+                        packet.ray.tfar[i],
+                        {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]},
+                        hit.u[i],
+                        hit.v[i]};
+}
+
+void occluded_packet(RTCScene scene, const BundleRay* rays, int count, unsigned mask,
+                     bool* blocked) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  alignas(64) RTCRay16 packet;
+  alignas(64) int valid[kBundleSize];
+  fill_packet(rays, count, mask, packet, valid);
+  rtcOccluded16(valid, scene, &context, &packet);
+  for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
 }
 
 void require_valid_materials(const MeshRef& ref, std::size_t material_count,
@@ -371,45 +402,31 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
 
 bool EmbreeScene::occluded(int target, const Vec3& origin, const Vec3& direction,
                            double distance) const {
+  return occluded(target, BundleRay{origin, direction, true, visibility_far(distance)});
+}
+
+bool EmbreeScene::occluded(int target, const BundleRay& bundle_ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray =
-      make_ray(origin, direction,
-               std::isinf(distance) ? kInfinity : float(distance * (1 - kVisibilityMargin)));
-  rtcOccluded1(target == kNow ? current_->top : targets_[std::size_t(target)].top, &context, &ray);
+  RTCRay ray = make_ray(bundle_ray.origin, bundle_ray.direction, bundle_ray.far);
+  rtcOccluded1(scene_at(target), &context, &ray);
   return ray.tfar < 0;
 }
 
+void EmbreeScene::occluded(int target, const BundleRay* rays, int count, bool* blocked) const {
+  occluded_packet(scene_at(target), rays, count, kSceneMask, blocked);
+}
+
 void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  alignas(64) RTCRayHit16 packet;
-  alignas(64) int valid[kBundleSize];
-  fill_packet(rays, count, kSceneMask | kColorOnlyMask, packet.ray, valid);
-  std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
-  std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
-  rtcIntersect16(valid, current_->top, &context, &packet);
-  const RTCHit16& hit = packet.hit;
-  for (int i = 0; i < count; ++i)
-    hits[i] = !valid[i] || hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
-                  ? Hit{}
-                  : Hit{true,
-                        hit.instID[0][i],
-                        hit.primID[i],
-                        packet.ray.tfar[i],
-                        {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]},
-                        hit.u[i],
-                        hit.v[i]};
+  intersect_packet(current_->top, rays, count, kSceneMask | kColorOnlyMask, hits);
+}
+
+void EmbreeScene::intersect_scene(const BundleRay* rays, int count, Hit* hits) const {
+  intersect_packet(current_->top, rays, count, kSceneMask, hits);
 }
 
 void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  alignas(64) RTCRay16 packet;
-  alignas(64) int valid[kBundleSize];
-  fill_packet(rays, count, kSceneMask | kSunMask, packet, valid);
-  rtcOccluded16(valid, current_->top, &context, &packet);
-  for (int i = 0; i < count; ++i) blocked[i] = valid[i] && packet.tfar[i] < 0;
+  occluded_packet(current_->top, rays, count, kSceneMask | kSunMask, blocked);
 }
 
 }  // namespace flowscape

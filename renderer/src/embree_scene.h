@@ -4,6 +4,7 @@
 // scenes instance them, posed at the frame's time and at each target time of its ground truth.
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -41,6 +42,15 @@ struct BundleRay {
   float far = std::numeric_limits<float>::infinity();  // how far it looks
 };
 constexpr int kBundleSize = 16;  // Embree's widest packet
+
+// How far a visibility ray to a point `distance` away looks: a fraction short of it, so that the
+// point's own surface does not hide it (float hit points are good to about 1e-6 of their
+// distance); infinity stays infinity.
+inline float visibility_far(double distance) {
+  constexpr double kVisibilityMargin = 1e-4;
+  return std::isinf(distance) ? std::numeric_limits<float>::infinity()
+                              : float(distance * (1 - kVisibilityMargin));
+}
 
 struct Hit {
   bool found = false;
@@ -94,9 +104,15 @@ class EmbreeScene {
   // `target` of set_times (kNow: at `now`).
   static constexpr int kNow = -1;
   bool occluded(int target, const Vec3& origin, const Vec3& direction, double distance) const;
+  // The same for a ray whose `far` is visibility_far(distance), and for up to kBundleSize of them
+  // as one Embree packet (inactive rays: not blocked).
+  bool occluded(int target, const BundleRay& ray) const;
+  void occluded(int target, const BundleRay* rays, int count, bool* blocked) const;
   // Up to kBundleSize colour rays as one Embree packet at `now` (unbounded): much faster than
   // single rays when they start close together in similar directions (the samples of one pixel).
   void intersect(const BundleRay* rays, int count, Hit* hits) const;
+  // The same for ground-truth rays, which see what shadow rays see (not the colour-only actors).
+  void intersect_scene(const BundleRay* rays, int count, Hit* hits) const;
   void occluded(const BundleRay* rays, int count, bool* blocked) const;
 
   // Where the surface point `point` (on `hit`, at `now`) is at target `target` of set_times, in
@@ -118,6 +134,9 @@ class EmbreeScene {
 
   // Poses at the times of set_times (evaluated once per call there, not per ray).
   const Pose& pose_now(unsigned mesh) const { return current_->poses[mesh]; }
+  RTCScene scene_at(int target) const {  // kNow or a target of set_times
+    return target == kNow ? current_->top : targets_[std::size_t(target)].top;
+  }
   const Pose& world_to_object_now(unsigned mesh) const { return current_->inverses[mesh]; }
   const Pose& pose_at_target(int target, unsigned mesh) const {
     return targets_[std::size_t(target)].poses[mesh];

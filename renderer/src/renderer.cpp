@@ -105,9 +105,10 @@ struct TruthContext {
 
 // Flow: the hit point, fixed on its object, moved to the object's pose at the target's time and
 // projected by the camera then; the sky moves with the rig's rotation only. Valid: nothing hides
-// the moved point from the camera then.
+// the moved point from the camera then, which `visibility` (inactive where it cannot be seen)
+// decides.
 TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec3& point,
-                         const Vec3& direction, Vec2 pixel) {
+                         const Vec3& direction, Vec2 pixel, BundleRay& visibility) {
   const Moment& target = c.targets[std::size_t(k)];
   const Vec3 target_origin = target.rig.translation();
   TargetTruth truth;
@@ -119,46 +120,107 @@ TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec
     target_distance = target_direction.norm();
     target_direction /= target_distance;
   }
+  visibility = {target_origin, target_direction, true, visibility_far(target_distance)};
   if (hit.found && c.request.camera_on_rig && c.scene.mesh(hit.mesh).on_rig) {
     truth.u = truth.v = 0;  // fixed to the camera: seen at the same pixel then, exactly
-    truth.valid = !c.scene.occluded(k, target_origin, target_direction, target_distance);
     return truth;
   }
   const auto projected = c.projection.project(target.rig.linear().transpose() * target_direction);
-  if (!projected) return truth;
+  if (!projected) {
+    visibility.active = false;
+    return truth;
+  }
   double u = projected->x() - pixel.x();
   if (c.projection.kind == Projection::Kind::Equirectangular)
     u = erp_flow_u(wrap_360(u, c.projection.width), pixel.x(), c.projection.width, c.mode);
   truth.u = float(u), truth.v = float(projected->y() - pixel.y());
-  truth.valid = !c.scene.occluded(k, target_origin, target_direction, target_distance);
   return truth;
 }
 
-// Every asked-for kind of the ray through `pixel`, into column x, row y of `out`.
-void trace_truth(const TruthContext& c, Vec2 pixel, GroundTruth& out, int x, int y) {
+// A pixel of a ground-truth call: its centre, and where it goes in the output.
+struct TruthPixel {
+  Vec2 centre;
+  int x, y;
+};
+
+// The ray through a pixel centre, in the world (inactive outside a lens's image).
+BundleRay truth_ray(const TruthContext& c, Vec2 pixel) {
   const Pose& rig = c.request.pair.rig;
-  const Vec3 origin = rig.translation();
   const Vec3 camera_ray = c.projection.ray(pixel);
-  if (camera_ray.isZero()) return put_uncovered(out, x, y);
-  const Vec3 direction = (rig.linear() * camera_ray).normalized();
-  const Hit hit = c.scene.intersect(origin, direction);
-  put_surface(c.scene, hit, out, x, y);
-  const Vec3 point = origin + hit.distance * direction;
-  for (std::size_t k = 0; k < c.targets.size(); ++k) {
-    const TargetTruth target = trace_target(c, int(k), hit, point, direction, pixel);
-    if (k > 0) {
-      put_flow(out.more[k - 1].flow, out.more[k - 1].valid, x, y, target);
+  if (camera_ray.isZero()) return {};
+  return {rig.translation(), (rig.linear() * camera_ray).normalized(), true};
+}
+
+// Embree's answers for up to kBundleSize rays: one packet (coherent rays: neighbouring pixels'
+// camera rays, their visibility rays from one target viewpoint), or each ray alone (0.11's way,
+// TruthRequest::single_rays). The same hits either way.
+void intersect_all(const TruthContext& c, const BundleRay* rays, int count, Hit* hits) {
+  if (!c.request.single_rays) return c.scene.intersect_scene(rays, count, hits);
+  for (int i = 0; i < count; ++i)
+    hits[i] = rays[i].active ? c.scene.intersect(rays[i].origin, rays[i].direction) : Hit{};
+}
+
+void occluded_all(const TruthContext& c, int target, const BundleRay* rays, int count,
+                  bool* blocked) {
+  if (!c.request.single_rays) return c.scene.occluded(target, rays, count, blocked);
+  for (int i = 0; i < count; ++i) blocked[i] = rays[i].active && c.scene.occluded(target, rays[i]);
+}
+
+// Every asked-for kind of up to kBundleSize pixels, into `out`: their camera rays traced together,
+// then each target's visibility rays together.
+void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, GroundTruth& out) {
+  BundleRay rays[kBundleSize];
+  Hit hits[kBundleSize];
+  for (int i = 0; i < count; ++i) rays[i] = truth_ray(c, pixels[i].centre);
+  intersect_all(c, rays, count, hits);
+  const std::size_t targets = c.targets.size();
+  std::vector<TargetTruth> found(targets * kBundleSize);
+  std::vector<BundleRay> visibility(targets * kBundleSize);
+  for (int i = 0; i < count; ++i) {
+    if (!rays[i].active) continue;
+    const Vec3 point = rays[i].origin + hits[i].distance * rays[i].direction;
+    for (std::size_t k = 0; k < targets; ++k)
+      found[k * kBundleSize + i] = trace_target(c, int(k), hits[i], point, rays[i].direction,
+                                                pixels[i].centre, visibility[k * kBundleSize + i]);
+  }
+  for (std::size_t k = 0; k < targets; ++k) {
+    bool blocked[kBundleSize];
+    occluded_all(c, int(k), &visibility[k * kBundleSize], count, blocked);
+    for (int i = 0; i < count; ++i)
+      found[k * kBundleSize + i].valid = visibility[k * kBundleSize + i].active && !blocked[i];
+  }
+  for (int i = 0; i < count; ++i) {
+    const auto [centre, x, y] = pixels[i];
+    if (!rays[i].active) {
+      put_uncovered(out, x, y);
       continue;
     }
-    put_flow(out.flow, out.valid, x, y, target);
-    if (c.request.scene_flow)
+    const Hit& hit = hits[i];
+    put_surface(c.scene, hit, out, x, y);
+    for (std::size_t k = 1; k < targets; ++k)
+      put_flow(out.more[k - 1].flow, out.more[k - 1].valid, x, y, found[k * kBundleSize + i]);
+    const TargetTruth& next = found[i];
+    put_flow(out.flow, out.valid, x, y, next);
+    if (c.request.scene_flow) {
+      const Vec3 point = rays[i].origin + hit.distance * rays[i].direction;
       put_vector(out.scene_flow, x, y,
-                 hit.found ? Vec3(c.camera.world_to_camera * (target.moved - point))
+                 hit.found ? Vec3(c.camera.world_to_camera * (next.moved - point))
                            : Vec3::Constant(kNoVector));
+    }
+    if (c.request.normal || c.request.shading_normal)
+      put_normals(c.scene, c.images, c.projection, c.request, c.camera, hit, rays[i].direction,
+                  centre, out, x, y);
   }
-  if (c.request.normal || c.request.shading_normal)
-    put_normals(c.scene, c.images, c.projection, c.request, c.camera, hit, direction, pixel, out, x,
-                y);
+}
+
+// A row's pixels, kBundleSize neighbours at a time.
+void trace_truth_row(const TruthContext& c, int y, GroundTruth& out) {
+  TruthPixel pixels[kBundleSize];
+  for (int x0 = 0; x0 < c.projection.width; x0 += kBundleSize) {
+    const int count = std::min(kBundleSize, c.projection.width - x0);
+    for (int i = 0; i < count; ++i) pixels[i] = {Vec2(x0 + i + 0.5, y + 0.5), x0 + i, y};
+    trace_truth(c, pixels, count, out);
+  }
 }
 
 TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
@@ -191,9 +253,7 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const TruthRequ
     return rolling_ground_truth(impl_->embree, impl_->images, projection, request);
   const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
   GroundTruth gt = allocate_truth(request, projection.width, projection.height);
-  tbb::parallel_for(0, projection.height, [&](int y) {
-    for (int x = 0; x < projection.width; ++x) trace_truth(c, Vec2(x + 0.5, y + 0.5), gt, x, y);
-  });
+  tbb::parallel_for(0, projection.height, [&](int y) { trace_truth_row(c, y, gt); });
   return gt;
 }
 
@@ -203,8 +263,14 @@ GroundTruth Renderer::ground_truth_at(const Projection& projection, const TruthR
     throw std::invalid_argument("ground truth at chosen pixels: global shutters only");
   const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
   GroundTruth gt = allocate_truth(request, int(pixels.size()), 1);
-  tbb::parallel_for(std::size_t(0), pixels.size(),
-                    [&](std::size_t k) { trace_truth(c, pixels[k], gt, int(k), 0); });
+  const std::size_t batches = (pixels.size() + kBundleSize - 1) / kBundleSize;
+  tbb::parallel_for(std::size_t(0), batches, [&](std::size_t batch) {
+    TruthPixel chosen[kBundleSize];
+    const std::size_t first = batch * kBundleSize;
+    const int count = int(std::min<std::size_t>(kBundleSize, pixels.size() - first));
+    for (int i = 0; i < count; ++i) chosen[i] = {pixels[first + i], int(first + i), 0};
+    trace_truth(c, chosen, count, gt);
+  });
   return gt;
 }
 

@@ -375,20 +375,31 @@ TEST_CASE("lamps light the road by the inverse-square law within their beams, an
   CHECK(checked > 300);
 }
 
+// A road under a sky dome of rows x columns cells, grey radiance(row, z of the cell's centre), and
+// no sun.
+Scene road_under_dome(const Eigen::Vector3f& albedo, int rows, int columns,
+                      double (*radiance)(int row, double z)) {
+  Scene scene = road_under_black_sky(albedo);
+  scene.environment.sun_irradiance = Eigen::Vector3f::Zero();
+  auto dome = std::make_shared<SkyDome>();
+  dome->rows = rows, dome->columns = columns;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c)
+      dome->radiance.push_back(
+          Eigen::Vector3f::Constant(float(radiance(r, dome->direction(r, c).z()))));
+  scene.environment.sky_dome = dome;
+  return scene;
+}
+
 TEST_CASE(
     "a narrow bright ring of the release's 320 x 1280 dome lights a plane as its closed form says, "
     "through the averaged sky scattered light sees") {
   // L = 50 on rows 101..106 (elevations e0 = 101/320 x 90, e1 = 107/320 x 90 degrees), across
   // two of the averaged sky's 8-row blocks: irradiance on a level plane
   // 2 pi L int_e0^e1 sin e cos e de = pi L (sin^2 e1 - sin^2 e0).
-  Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
-  scene.environment.sun_irradiance = Eigen::Vector3f::Zero();
-  auto dome = std::make_shared<SkyDome>();
-  dome->rows = 320, dome->columns = 1280;
-  dome->radiance.assign(std::size_t(320 * 1280), Eigen::Vector3f::Zero());
-  for (int r = 101; r <= 106; ++r)
-    for (int c = 0; c < 1280; ++c) dome->radiance[std::size_t(r * 1280 + c)].setConstant(50);
-  scene.environment.sky_dome = dome;
+  const Scene scene = road_under_dome({0.5f, 0.5f, 0.5f}, 320, 1280, [](int row, double) {
+    return row >= 101 && row <= 106 ? 50.0 : 0.0;
+  });
   const double e0 = 101.0 / 320 * kPi / 2, e1 = 107.0 / 320 * kPi / 2;
   const double irradiance = kPi * 50 * (std::pow(std::sin(e1), 2) - std::pow(std::sin(e0), 2));
   Renderer renderer(scene);
@@ -442,16 +453,8 @@ TEST_CASE(
     "light") {
   // L(elevation) = 1 + 4 sin^2: irradiance on a level plane 2 pi int (1 + 4 sin^2 e) sin e cos e de
   // = 3 pi, so the plane's radiance is 3 x albedo
-  Scene scene = road_under_black_sky({0.5f, 0.4f, 0.3f});
-  scene.environment.sun_irradiance = Eigen::Vector3f::Zero();
-  auto dome = std::make_shared<SkyDome>();
-  dome->rows = 90, dome->columns = 180;
-  for (int r = 0; r < dome->rows; ++r)
-    for (int c = 0; c < dome->columns; ++c) {
-      const double z = dome->direction(r, c).z();
-      dome->radiance.push_back(Eigen::Vector3f::Constant(float(1 + 4 * z * z)));
-    }
-  scene.environment.sky_dome = dome;
+  const Scene scene =
+      road_under_dome({0.5f, 0.4f, 0.3f}, 90, 180, [](int, double z) { return 1 + 4 * z * z; });
   const Image<float> down =
       Renderer(scene).color(Projection::cube_face(Face::Down, 16), FramePair{}, {64, 1, 5});
   for (int c = 0; c < 3; ++c) {

@@ -46,6 +46,9 @@ struct TruthRequest {
   // times (docs/cameras.md, "Rolling shutter").
   Readout readout{};
   CameraTrack track{};
+  // flowscape 0.11's tracing, for bench_release: each camera ray alone rather than a row's 16
+  // neighbours as one Embree packet (the same hits, so the same bytes).
+  bool single_rays = false;
 };
 
 struct FlowTruth {
