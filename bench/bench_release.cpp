@@ -6,11 +6,12 @@
 // release's colour before the denoiser, and the legacy actors (flowscape 0.9's boxes): the
 // detailed actors' cost over them (target: at most 15 %); and the same release with the final pass
 // (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %).
-// First, flowscape 0.10's order (each frame written before the next renders) against writing a
-// frame while the next renders, with how many cores were busy, and where the time went by phase;
-// then each renderer lever against flowscape 0.11's path tracer (RenderOptions switches it back):
-// the cube faces' path tracing of the first frame of each sequence of the fixed sample below,
-// alternating, median of max(runs, 1), and whether any colour changed.
+// First, flowscape 0.10's path (each frame written before the next renders, by 0.10's renderer:
+// WriteOverlap::None) against the new one (writing a frame while the next renders, the renderer's
+// levers on), with how many cores were busy, and where the new path's time went by phase; then
+// each renderer lever on its own against 0.10's and 0.11's renderer (RenderOptions and
+// TruthRequest switch it back) on the first frame of each sequence of the fixed sample below,
+// alternating, median of max(runs, 1), and whether any image changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
 // time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
 // Usage: bench_release [frames = 4] [threads = 2] [runs = 0]
@@ -243,7 +244,7 @@ void print_render_levers(const ReleaseConfig& config, const std::vector<Sequence
 
 }  // namespace
 
-// Over the fixed sample, `runs` times each: 0.10's order and the new one, projected to the full
+// Over the fixed sample, `runs` times each: 0.10's path and the new one, projected to the full
 // release, with where the new one's time went.
 void print_fixed_sample(ReleaseConfig config, const fs::path& out, int full_frames,
                         int release_frames, int threads, int runs) {
@@ -282,12 +283,12 @@ int main(int argc, char** argv) {
   const Measured overlapped = measure(config, out, sequence_frames, WriteOverlap::Frame);
   const double release = overlapped.seconds_per_frame;
   std::printf(
-      "  writing after rendering (0.10's path)     %6.2f s/frame, cores busy %.2f of %d (%.2f "
+      "  0.10's path (writing after rendering)     %6.2f s/frame, cores busy %.2f of %d (%.2f "
       "with %d-frame sequences)\n",
       serial.seconds_per_frame, serial.cores_busy, threads, serial.cores_projected,
       sequence_frames);
   std::printf(
-      "  writing while the next frame renders      %6.2f s/frame, cores busy %.2f of %d (%.2f "
+      "  the new path (writing while rendering)    %6.2f s/frame, cores busy %.2f of %d (%.2f "
       "with %d-frame sequences; target >= 1.85 of 2): %+.1f %%\n",
       release, overlapped.cores_busy, threads, overlapped.cores_projected, sequence_frames,
       100 * (release / serial.seconds_per_frame - 1));

@@ -366,7 +366,9 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
   std::optional<ScopedPhase> setting_up(std::in_place, "scene set-up: city and models");
-  const Sequence sequence = make_sequence(sequence_spec(config, plan));
+  SequenceSpec spec = sequence_spec(config, plan);
+  spec.earlier_renderer = overlap == WriteOverlap::None;
+  const Sequence sequence = make_sequence(spec);
   setting_up.reset();
   // of every frame: those rendered now as they are written, the others read back
   const View view = statistics_view(layout);

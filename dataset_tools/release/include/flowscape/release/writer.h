@@ -10,9 +10,11 @@ namespace flowscape {
 struct SequenceProgress {
   std::function<void()> frame_done, frame_skipped;
 };
-// Whether a frame's files are written while the next frame renders (Frame: one frame in flight, so
-// the cores stay busy while files are encoded; the bytes are the same either way) or before it
-// renders (None: flowscape 0.10's order, a baseline for bench_release).
+// How a sequence is written: the current way (Frame: a frame's files are written while the next
+// frame renders, one frame in flight, so the cores stay busy while files are encoded) or
+// flowscape 0.10's, a baseline for bench_release (None: each frame's files written before the next
+// renders, by 0.10's renderer: SequenceSpec::earlier_renderer). The ground-truth bytes are the same
+// either way, the colour within its noise (docs/release.md, "Speed").
 enum class WriteOverlap : std::uint8_t { Frame, None };
 // Renders and writes one sequence: every frame whose files are not all there and complete yet
 // (formats/complete_file.h; temporary files a killed run left are removed first), then meta.json.
