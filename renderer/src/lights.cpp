@@ -125,6 +125,12 @@ LampLights::Sample LampLights::sample(const Vec3& point, const Vec3& normal, dou
 
 namespace {
 
+// sin(top) - sin(bottom) of a dome row: its solid angle over the azimuth it spans.
+double row_band(int rows, int row) {
+  const double d_elevation = kPi / 2 / rows;
+  return std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation);
+}
+
 // The largest block of up to 8 x 8 cells that tiles the dome.
 int block_side(const SkyDome& dome) {
   int side = 8;
@@ -139,9 +145,8 @@ SkyDome averaged(const SkyDome& dome, int side) {
   out.rows = dome.rows / side, out.columns = dome.columns / side;
   std::vector<Eigen::Vector3d> sums(std::size_t(out.rows) * out.columns, Eigen::Vector3d::Zero());
   std::vector<double> weights(std::size_t(out.rows), 0.0);
-  const double d_elevation = kPi / 2 / dome.rows;
   for (int row = 0; row < dome.rows; ++row) {
-    const double weight = std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation);
+    const double weight = row_band(dome.rows, row);
     weights[std::size_t(row / side)] += weight * side;
     for (int column = 0; column < dome.columns; ++column)
       sums[std::size_t(row / side) * out.columns + column / side] +=
@@ -156,9 +161,8 @@ SkyDome averaged(const SkyDome& dome, int side) {
 }  // namespace
 
 SkySampler::SkySampler(const SkyDome* dome, bool average)
-    : empty_(dome == nullptr),
-      dome_(dome ? averaged(*dome, average ? block_side(*dome) : 1) : SkyDome{}) {
-  if (empty_) return;
+    : dome_(dome ? averaged(*dome, average ? block_side(*dome) : 1) : SkyDome{}) {
+  if (empty()) return;
   const std::size_t cells = dome_.radiance.size();
   std::vector<double> weights(cells);
   double sum = 0;
@@ -182,9 +186,7 @@ SkySampler::SkySampler(const SkyDome* dome, bool average)
 Rgb SkySampler::radiance(const Vec3& d) const { return dome_.at(d).cast<double>(); }
 
 double SkySampler::cell_solid_angle(int row) const {
-  const double d_elevation = kPi / 2 / dome_.rows;
-  return 2 * kPi / dome_.columns *
-         (std::sin((row + 1) * d_elevation) - std::sin(row * d_elevation));
+  return 2 * kPi / dome_.columns * row_band(dome_.rows, row);
 }
 
 // The first cell whose cumulative share exceeds u.x() (the last if none does), found in its row
@@ -207,7 +209,7 @@ Vec3 SkySampler::sample(Vec2 u) const {
 }
 
 double SkySampler::pdf(const Vec3& d) const {
-  if (empty_ || d.z() < 0) return 0;
+  if (empty() || d.z() < 0) return 0;
   const int row =
       std::min(dome_.rows - 1, int(std::asin(std::min(d.z(), 1.0)) / (kPi / 2) * dome_.rows));
   double azimuth = std::atan2(d.y(), d.x());

@@ -57,7 +57,7 @@ class SkySampler {
  public:
   // average false: the dome's own cells (flowscape 0.11)
   explicit SkySampler(const SkyDome* dome, bool average = true);
-  bool empty() const { return empty_; }
+  bool empty() const { return dome_.radiance.empty(); }
   Rgb radiance(const Vec3& d) const;  // d.z() >= 0: the averaged dome's
   Vec3 sample(Vec2 u) const;
   double pdf(const Vec3& d) const;                             // per steradian; 0 below the horizon
@@ -65,7 +65,6 @@ class SkySampler {
 
  private:
   double cell_solid_angle(int row) const;
-  bool empty_;
   SkyDome dome_;                    // the averaged one
   std::vector<double> cumulative_;  // over the cells, row-major, ending at 1
   std::vector<double> row_ends_;    // cumulative_ at each row's last cell: searched first

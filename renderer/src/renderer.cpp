@@ -176,11 +176,12 @@ void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, Gro
   const std::size_t targets = c.targets.size();
   std::vector<TargetTruth> found(targets * kBundleSize);
   std::vector<BundleRay> visibility(targets * kBundleSize);
+  Vec3 points[kBundleSize];
   for (int i = 0; i < count; ++i) {
     if (!rays[i].active) continue;
-    const Vec3 point = rays[i].origin + hits[i].distance * rays[i].direction;
+    points[i] = rays[i].origin + hits[i].distance * rays[i].direction;
     for (std::size_t k = 0; k < targets; ++k)
-      found[k * kBundleSize + i] = trace_target(c, int(k), hits[i], point, rays[i].direction,
+      found[k * kBundleSize + i] = trace_target(c, int(k), hits[i], points[i], rays[i].direction,
                                                 pixels[i].centre, visibility[k * kBundleSize + i]);
   }
   for (std::size_t k = 0; k < targets; ++k) {
@@ -201,12 +202,10 @@ void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, Gro
       put_flow(out.more[k - 1].flow, out.more[k - 1].valid, x, y, found[k * kBundleSize + i]);
     const TargetTruth& next = found[i];
     put_flow(out.flow, out.valid, x, y, next);
-    if (c.request.scene_flow) {
-      const Vec3 point = rays[i].origin + hit.distance * rays[i].direction;
+    if (c.request.scene_flow)
       put_vector(out.scene_flow, x, y,
-                 hit.found ? Vec3(c.camera.world_to_camera * (next.moved - point))
+                 hit.found ? Vec3(c.camera.world_to_camera * (next.moved - points[i]))
                            : Vec3::Constant(kNoVector));
-    }
     if (c.request.normal || c.request.shading_normal)
       put_normals(c.scene, c.images, c.projection, c.request, c.camera, hit, rays[i].direction,
                   centre, out, x, y);
