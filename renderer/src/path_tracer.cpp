@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "lights.h"
 #include "sampling.h"
@@ -343,8 +344,9 @@ class PixelLooks {
 };
 
 // Traces up to kBundleSize paths in lock step, one Embree packet per bounce and one for the sun
-// rays: the samples of one pixel stay coherent for the camera rays and the first sun rays.
-void trace_bundle(const FrameContext& frame, PixelLooks& camera_looks, PathState* paths,
+// rays: the samples of one pixel (or of a few neighbours) stay coherent for the camera rays and
+// the first sun rays. camera_looks: each path's pixel's.
+void trace_bundle(const FrameContext& frame, PixelLooks* const* camera_looks, PathState* paths,
                   Sampler* samplers, int count, int max_bounces, std::uint64_t& rays) {
   const EmbreeScene& embree = frame.embree;
   BundleRay bundle[kBundleSize];
@@ -366,7 +368,7 @@ void trace_bundle(const FrameContext& frame, PixelLooks& camera_looks, PathState
       TexturedLook own;  // a specular chain's hit: its own point
       if (frame.textures && hits[i].found && !paths[i].scattered && is_textured(embree, hits[i])) {
         if (bounce == 0) {
-          look = &camera_looks.at(hits[i], paths[i].dir);
+          look = &camera_looks[i]->at(hits[i], paths[i].dir);
         } else {
           own = textured_look(embree, frame.images, hits[i],
                               paths[i].origin + hits[i].distance * paths[i].dir, paths[i].dir,
@@ -389,6 +391,99 @@ void put(Image<float>& image, int x, int y, const Rgb& value) {
   for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = float(value[c]);
 }
 
+// One pixel's samples: their keys, camera rays and textured looks, and what they gathered.
+struct PixelSamples {
+  PixelSamples(const FrameContext& frame, const Projection& projection, const Pose& camera,
+               std::uint64_t seed, int x, int y)
+      : keys(mix_bits(seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)))),
+        camera_rays(projection, x, y),
+        spread(projection.pixel_spread(Vec2(x + 0.5, y + 0.5))),
+        looks(frame, camera.translation(), (camera.linear() * camera_rays({0.5, 0.5})).normalized(),
+              spread) {}
+
+  void add(const PathState& path) {
+    for (int l = 0; l < kLayerCount; ++l) sums[l] += path.light[l];
+    for (int l = kDirect; l <= kSpecular; ++l)
+      squares[l - kDirect] += std::pow(luminance(path.light[l]), 2);
+    albedo += path.albedo, normal += path.normal;
+  }
+  // The means of `samples` into the layers at (x, y), with the variance of each noisy layer's mean.
+  void put_means(int samples, ColorLayers& out, int x, int y) const {
+    Image<float>* layers[kLayerCount] = {&out.other, &out.direct, &out.indirect, &out.specular};
+    const double weight = 1.0 / std::max(1, samples);
+    for (int l = 0; l < kLayerCount; ++l) put(*layers[l], x, y, sums[l] * weight);
+    put(out.albedo, x, y, albedo * weight);
+    put(out.normal, x, y, normal);
+    Rgb variance;
+    for (int l = kDirect; l <= kSpecular; ++l) {
+      const double mean = luminance(sums[l]) * weight;
+      variance[l - kDirect] = std::max(0.0, squares[l - kDirect] * weight - mean * mean) * weight;
+    }
+    put(out.variance, x, y, variance);
+  }
+
+  Sampler::PixelKeys keys;
+  PixelRays camera_rays;
+  double spread;
+  PixelLooks looks;
+  Rgb sums[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
+  Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
+  Rgb albedo = Rgb::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
+// Traces neighbouring pixels of a row together: as many as fill a bundle with all their samples
+// (two at 8 spp), so their camera and first light rays share Embree packets. Each pixel's samples
+// and their order are its own, so a pixel's colour does not depend on its neighbours.
+struct PixelGroupTracer {
+  const FrameContext& frame;
+  const Projection& projection;
+  const Pose& camera;
+  const RenderOptions& options;
+
+  void trace(int y, int x0, int x1, ColorLayers& out, std::uint64_t& rays) const {
+    const int spp = options.samples_per_pixel;
+    std::optional<PixelSamples> group[kBundleSize];
+    for (int x = x0; x < x1; ++x)
+      group[x - x0].emplace(frame, projection, camera, options.seed, x, y);
+    const int chunk = std::min(spp, kBundleSize);
+    for (int first = 0; first < spp; first += chunk) {
+      const int per_pixel = std::min(chunk, spp - first);
+      Sampler samplers[kBundleSize];
+      PathState paths[kBundleSize];
+      PixelLooks* looks[kBundleSize];
+      int lane = 0;
+      for (int x = x0; x < x1; ++x)
+        for (int i = 0; i < per_pixel; ++i, ++lane)
+          start(*group[x - x0], first + i, lane, samplers, paths, looks);
+      trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays);
+      lane = 0;
+      for (int x = x0; x < x1; ++x)
+        for (int i = 0; i < per_pixel; ++i) group[x - x0]->add(paths[lane++]);
+    }
+    for (int x = x0; x < x1; ++x) group[x - x0]->put_means(spp, out, x, y);
+  }
+
+ private:
+  // Sets up sample `index` of `pixel` in bundle lane `lane`.
+  void start(PixelSamples& pixel, int index, int lane, Sampler* samplers, PathState* paths,
+             PixelLooks** looks) const {
+    samplers[lane] = Sampler(pixel.keys, index, options.samples_per_pixel);
+    PathState& path = paths[lane];
+    path.origin = camera.translation();
+    path.dir = (camera.linear() * pixel.camera_rays(samplers[lane].next())).normalized();
+    path.spread = pixel.spread;
+    path.indirect_weight = indirect_weight(index);
+    looks[lane] = &pixel.looks;
+  }
+  // How much sample `index`'s indirect light counts (RenderOptions::indirect_samples).
+  double indirect_weight(int index) const {
+    const int indirect = options.indirect_samples, spp = options.samples_per_pixel;
+    if (indirect <= 0 || indirect >= spp) return 1;
+    return index < indirect ? double(spp) / indirect : 0;
+  }
+};
+
 }  // namespace
 
 ColorLayers color_layers_of(int width, int height) {
@@ -402,66 +497,18 @@ std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const
                          const Projection& projection, const Pose& camera,
                          const RenderOptions& options, const PixelWindow& window,
                          ColorLayers& out) {
-  Image<float>* layers[kLayerCount] = {&out.other, &out.direct, &out.indirect, &out.specular};
-  const Vec3 origin = camera.translation();
-  const Mat3 rotation = camera.linear();
   std::atomic<std::uint64_t> rays{0};
   const FrameContext frame{embree, images, lights, options.textures};
+  const PixelGroupTracer tracer{frame, projection, camera, options};
+  const int group_size = std::max(1, kBundleSize / std::max(1, options.samples_per_pixel));
   // 2-D blocks: a rolling shutter's window is a single line
   const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
   tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
-    std::uint64_t row_rays = 0;
+    std::uint64_t block_rays = 0;
     for (int y = block.rows().begin(); y < block.rows().end(); ++y)
-      for (int x = block.cols().begin(); x < block.cols().end(); ++x) {
-        const std::uint64_t key =
-            mix_bits(options.seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)));
-        const Sampler::PixelKeys pixel_keys(key);
-        const PixelRays camera_rays(projection, x, y);
-        const double spread = projection.pixel_spread(Vec2(x + 0.5, y + 0.5));
-        PixelLooks camera_looks(frame, origin, (rotation * camera_rays({0.5, 0.5})).normalized(),
-                                spread);
-        Rgb sums[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
-        Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
-        Rgb albedo = Rgb::Zero();
-        Vec3 normal = Vec3::Zero();
-        for (int first = 0; first < options.samples_per_pixel; first += kBundleSize) {
-          const int count = std::min(kBundleSize, options.samples_per_pixel - first);
-          Sampler samplers[kBundleSize];
-          PathState paths[kBundleSize];
-          for (int i = 0; i < count; ++i) {
-            samplers[i] = Sampler(pixel_keys, first + i, options.samples_per_pixel);
-            const Vec2 jitter = samplers[i].next();
-            paths[i].origin = origin;
-            paths[i].dir = (rotation * camera_rays(jitter)).normalized();
-            paths[i].spread = spread;
-            if (options.indirect_samples > 0 &&
-                options.indirect_samples < options.samples_per_pixel)
-              paths[i].indirect_weight =
-                  first + i < options.indirect_samples
-                      ? double(options.samples_per_pixel) / options.indirect_samples
-                      : 0;
-          }
-          trace_bundle(frame, camera_looks, paths, samplers, count, options.max_bounces, row_rays);
-          for (int i = 0; i < count; ++i) {
-            for (int l = 0; l < kLayerCount; ++l) sums[l] += paths[i].light[l];
-            for (int l = kDirect; l <= kSpecular; ++l)
-              squares[l - kDirect] += std::pow(luminance(paths[i].light[l]), 2);
-            albedo += paths[i].albedo, normal += paths[i].normal;
-          }
-        }
-        const double weight = 1.0 / std::max(1, options.samples_per_pixel);
-        for (int l = 0; l < kLayerCount; ++l) put(*layers[l], x, y, sums[l] * weight);
-        put(out.albedo, x, y, albedo * weight);
-        put(out.normal, x, y, normal);
-        Rgb variance;
-        for (int l = kDirect; l <= kSpecular; ++l) {
-          const double mean = luminance(sums[l]) * weight;
-          variance[l - kDirect] =
-              std::max(0.0, squares[l - kDirect] * weight - mean * mean) * weight;
-        }
-        put(out.variance, x, y, variance);
-      }
-    rays += row_rays;
+      for (int x = block.cols().begin(); x < block.cols().end(); x += group_size)
+        tracer.trace(y, x, std::min(x + group_size, block.cols().end()), out, block_rays);
+    rays += block_rays;
   });
   return rays;
 }

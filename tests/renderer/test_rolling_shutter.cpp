@@ -2,6 +2,7 @@
 // cameras against closed forms (a translating camera: a linear equation in the target line) and
 // against an independent dense solve (a camera spinning about its optical axis, a sliding box),
 // and its reduction to the global shutter.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -263,4 +264,37 @@ TEST_CASE("rolling-shutter colour: each line is the global colour at its own tim
   const double t = T + readout.offset(y + 0.5, p.height);
   const GroundTruth at_line = renderer.ground_truth(p, FramePair{t, t, track(t), track(t)});
   for (int x = 0; x < p.width; ++x) CHECK(*depth.pixel(x, y) == *at_line.depth.pixel(x, y));
+}
+
+TEST_CASE(
+    "path-traced colour: a pixel's samples give the same colour whatever is traced beside it") {
+  // the global shutter traces neighbouring pixels in shared packets (8 at 2 samples each, 5 at 3);
+  // a column readout traces each column's pixels one by one. A sunlit checkered wall (textured
+  // looks shared by a pixel's samples) and a box sliding in front of it.
+  Scene scene = textured_plane(6, 40);
+  scene.materials[0].pattern = checker(1, {0.1f, 0.5f, 1.5f});
+  scene.environment.sun_direction = Vec3(-0.6, 0.3, 0.74).normalized();  // on the wall's face
+  scene.actors.push_back(sliding_box({4.5, 1.2, 0}, {0, -3, 0}, 0));
+  Renderer renderer(scene);
+  const Projection p = Projection::pinhole(16, 12, 100);
+  const CameraTrack track = [](double t) { return Pose(Eigen::AngleAxisd(2 * t, Vec3::UnitZ())); };
+  for (const int spp : {2, 3}) {
+    RenderOptions options;
+    options.samples_per_pixel = spp;
+    const Readout readout{0.03, true};
+    const double T = 0.25;
+    const ColorLayers rolling = renderer.color_layers(p, T, track, readout, options);
+    const auto [low, high] =
+        std::minmax_element(rolling.direct.data.begin(), rolling.direct.data.end());
+    REQUIRE(*high > 2 * *low);  // the pixels differ
+    for (int x = 0; x < p.width; ++x) {
+      const double t = T + readout.offset(x + 0.5, p.width);
+      const ColorLayers global = renderer.color_layers(p, {t, t, track(t), track(t)}, options);
+      for (int y = 0; y < p.height; ++y)
+        for (int c = 0; c < 3; ++c) {
+          REQUIRE(rolling.direct.pixel(x, y)[c] == global.direct.pixel(x, y)[c]);
+          REQUIRE(rolling.indirect.pixel(x, y)[c] == global.indirect.pixel(x, y)[c]);
+        }
+    }
+  }
 }
