@@ -54,6 +54,38 @@ Scene plane_at(double distance) {
   return scene;
 }
 
+// A sunlit checkered wall (textured looks shared by a pixel's samples) and a box sliding in front
+// of it: colour that varies from pixel to pixel and over time.
+Scene lit_wall_with_box() {
+  Scene scene = textured_plane(6, 40);
+  scene.materials[0].pattern = checker(1, {0.1f, 0.5f, 1.5f});
+  scene.environment.sun_direction = Vec3(-0.6, 0.3, 0.74).normalized();  // on the wall's face
+  scene.actors.push_back(sliding_box({4.5, 1.2, 0}, {0, -3, 0}, 0));
+  return scene;
+}
+
+// Each line of a rolling-shutter colour image at `T` equals, bit for bit, the global shutter's
+// image at the line's own time (direct and indirect layers); the image is not uniform.
+void require_lines_at_their_times(Renderer& renderer, const Projection& p, const CameraTrack& track,
+                                  const Readout& readout, double T, const RenderOptions& options) {
+  const ColorLayers rolling = renderer.color_layers(p, T, track, readout, options);
+  const auto [low, high] =
+      std::minmax_element(rolling.direct.data.begin(), rolling.direct.data.end());
+  REQUIRE(*high > 2 * *low);
+  const int lines = readout.lines(p), length = readout.columns ? p.height : p.width;
+  for (int line = 0; line < lines; ++line) {
+    const double t = T + readout.offset(line + 0.5, lines);
+    const ColorLayers global = renderer.color_layers(p, {t, t, track(t), track(t)}, options);
+    for (int k = 0; k < length; ++k) {
+      const int x = readout.columns ? line : k, y = readout.columns ? k : line;
+      for (int c = 0; c < 3; ++c) {
+        REQUIRE(rolling.direct.pixel(x, y)[c] == global.direct.pixel(x, y)[c]);
+        REQUIRE(rolling.indirect.pixel(x, y)[c] == global.indirect.pixel(x, y)[c]);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("first_crossing solves s = a + b s where fixed-point iteration diverges") {
@@ -241,8 +273,7 @@ TEST_CASE("a rolling shutter reduces to the global shutter as its readout goes t
 }
 
 TEST_CASE("rolling-shutter colour: each line is the global colour at its own time") {
-  Scene scene = moving_box({6, 1.5, -1}, {-2, 4, 0.5});
-  scene.materials = {Material{}};
+  const Scene scene = lit_wall_with_box();  // the renderer holds it
   Renderer renderer(scene);
   const Projection p = Projection::pinhole(16, 12, 100);
   const CameraTrack track = [](double t) { return Pose(Eigen::AngleAxisd(2 * t, Vec3::UnitZ())); };
@@ -250,14 +281,7 @@ TEST_CASE("rolling-shutter colour: each line is the global colour at its own tim
   options.samples_per_pixel = 2;
   const Readout readout{0.03, false};
   const double T = 0.25;
-  const ColorLayers rolling = renderer.color_layers(p, T, track, readout, options);
-  for (int y = 0; y < p.height; ++y) {
-    const double t = T + readout.offset(y + 0.5, p.height);
-    const ColorLayers global = renderer.color_layers(p, {t, t, track(t), track(t)}, options);
-    for (int x = 0; x < p.width; ++x)
-      for (int c = 0; c < 3; ++c)
-        REQUIRE(rolling.direct.pixel(x, y)[c] == global.direct.pixel(x, y)[c]);
-  }
+  require_lines_at_their_times(renderer, p, track, readout, T, options);
   // and the depth guide follows the same line times
   const Image<float> depth = renderer.depth(p, T, track, readout);
   const int y = 9;
@@ -269,32 +293,14 @@ TEST_CASE("rolling-shutter colour: each line is the global colour at its own tim
 TEST_CASE(
     "path-traced colour: a pixel's samples give the same colour whatever is traced beside it") {
   // the global shutter traces neighbouring pixels in shared packets (8 at 2 samples each, 5 at 3);
-  // a column readout traces each column's pixels one by one. A sunlit checkered wall (textured
-  // looks shared by a pixel's samples) and a box sliding in front of it.
-  Scene scene = textured_plane(6, 40);
-  scene.materials[0].pattern = checker(1, {0.1f, 0.5f, 1.5f});
-  scene.environment.sun_direction = Vec3(-0.6, 0.3, 0.74).normalized();  // on the wall's face
-  scene.actors.push_back(sliding_box({4.5, 1.2, 0}, {0, -3, 0}, 0));
+  // a column readout traces each column's pixels one by one
+  const Scene scene = lit_wall_with_box();  // the renderer holds it
   Renderer renderer(scene);
   const Projection p = Projection::pinhole(16, 12, 100);
   const CameraTrack track = [](double t) { return Pose(Eigen::AngleAxisd(2 * t, Vec3::UnitZ())); };
   for (const int spp : {2, 3}) {
     RenderOptions options;
     options.samples_per_pixel = spp;
-    const Readout readout{0.03, true};
-    const double T = 0.25;
-    const ColorLayers rolling = renderer.color_layers(p, T, track, readout, options);
-    const auto [low, high] =
-        std::minmax_element(rolling.direct.data.begin(), rolling.direct.data.end());
-    REQUIRE(*high > 2 * *low);  // the pixels differ
-    for (int x = 0; x < p.width; ++x) {
-      const double t = T + readout.offset(x + 0.5, p.width);
-      const ColorLayers global = renderer.color_layers(p, {t, t, track(t), track(t)}, options);
-      for (int y = 0; y < p.height; ++y)
-        for (int c = 0; c < 3; ++c) {
-          REQUIRE(rolling.direct.pixel(x, y)[c] == global.direct.pixel(x, y)[c]);
-          REQUIRE(rolling.indirect.pixel(x, y)[c] == global.indirect.pixel(x, y)[c]);
-        }
-    }
+    require_lines_at_their_times(renderer, p, track, Readout{0.03, true}, 0.25, options);
   }
 }

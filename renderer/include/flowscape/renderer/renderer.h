@@ -108,7 +108,8 @@ struct RenderStats {
 
 class Renderer {
  public:
-  explicit Renderer(const Scene& scene);
+  explicit Renderer(const Scene& scene);  // holds on to `scene`: it must outlive the renderer
+  Renderer(Scene&&) = delete;             // a temporary scene would not
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
