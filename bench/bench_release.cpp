@@ -5,7 +5,8 @@
 // 2.7 h, about 1.5 s per frame). Baselines in the same run: the raw path tracer at 16 spp, the
 // release's colour before the denoiser, and the legacy actors (flowscape 0.9's boxes): the
 // detailed actors' cost over them (target: at most 15 %); and the same release with the final pass
-// (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %).
+// (output kind "final": motion blur, camera): its cost over the clean release (aim: at most 60 %),
+// and where that release's time went by phase.
 // First, flowscape 0.10's path (each frame written before the next renders, by 0.10's renderer:
 // WriteOverlap::None) against the new one (writing a frame while the next renders, the renderer's
 // levers on), with how many cores were busy, and where the new path's time went by phase; then
@@ -306,7 +307,8 @@ int main(int argc, char** argv) {
   const double baseline = seconds_per_frame(raw, out, sequence_frames);
   ReleaseConfig with_final = config;
   with_final.outputs.push_back("final");
-  const double final_pass = seconds_per_frame(with_final, out, sequence_frames);
+  const Measured final_measured = measure(with_final, out, sequence_frames);
+  const double final_pass = final_measured.seconds_per_frame;
   const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
   std::printf("  default: %d spp (%d indirect), a-trous   %6.2f s/frame  full release %5.2f h\n",
               config.spp, indirect_samples(config), release, hours(release));
@@ -322,5 +324,6 @@ int main(int argc, char** argv) {
       "  with the final pass                      %6.2f s/frame: it costs %+.1f %% over the clean "
       "release (aim <= +60 %%), full release %5.2f h\n",
       final_pass, 100 * (final_pass / release - 1), hours(final_pass));
+  print_profile(final_measured, frames);
   return 0;
 }

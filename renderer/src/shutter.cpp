@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cube_faces.h"
+#include "flowscape/core/profile.h"
 #include "flowscape/core/random.h"
 
 namespace flowscape {
@@ -118,7 +119,11 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
-      add_step(faces[f], renderer.color_layers(projection, time, camera, {}, step), weight);
+      {
+        const ScopedPhase phase("final pass: path tracing");
+        add_step(faces[f], renderer.color_layers(projection, time, camera, {}, step), weight);
+      }
+      const ScopedPhase phase("final pass: depth guide");
       if (depth_guide) depths[f].add(renderer.depth(projection, time, camera));
     }
   });

@@ -137,6 +137,7 @@ FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequ
                                Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
                                int frame) {
   const Image<float> faces = final_cube_color(config, sequence, renderer, frame);
+  const ScopedPhase phase("final pass: sensor and lens");
   FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
   const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
   int view = 1;
@@ -162,11 +163,6 @@ CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection
   return images;
 }
 
-// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
-// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
-// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
-// previous frame) becomes this frame's.
-// Returns the ERP's statistics.
 // A frame's images as rendered, written by write_frame (while the next frame renders).
 struct FrameImages {
   std::optional<ViewImages> cube;                  // the six faces, stacked
@@ -186,6 +182,10 @@ FrameStatistics write_frame(const fs::path& dir, const ReleaseLayout& layout, in
   return statistics_of(images.views.front().second, layout.flow_format, frame, frames);
 }
 
+// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
+// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
+// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
+// previous frame) becomes this frame's.
 FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
                                    const Sequence& sequence, Renderer& renderer,
                                    const CubeToErp* map, int frame, Exposure* exposure) {
