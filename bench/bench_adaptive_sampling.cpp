@@ -11,21 +11,17 @@
 // Usage: bench_adaptive_sampling [ERP height = 128] [reference spp = 1024] [share = 0.25]
 #include <tbb/global_control.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
 
+#include "flowscape/core/profile.h"
 #include "flowscape/renderer/denoise.h"
 #include "frame_quality.h"
 
 using namespace flowscape;
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The mean of two independent renders' layers: as one render of both renders' samples.
 ColorLayers pooled(ColorLayers a, const ColorLayers& b) {
@@ -40,15 +36,6 @@ ColorLayers pooled(ColorLayers a, const ColorLayers& b) {
   for (std::size_t i = 0; i < a.variance.data.size(); ++i)
     a.variance.data[i] = (a.variance.data[i] + b.variance.data[i]) / 4;
   return a;
-}
-
-// Per pixel, the squared difference of two images in 8-bit sRGB, summed over the channels.
-std::vector<double> squared_difference(const Image<float>& a, const Image<float>& b) {
-  const Image<std::uint8_t> x = linear_to_srgb8(a.view()), y = linear_to_srgb8(b.view());
-  std::vector<double> out(std::size_t(a.width) * a.height, 0.0);
-  for (std::size_t i = 0; i < x.data.size(); ++i)
-    out[i / 3] += std::pow(double(x.data[i]) - y.data[i], 2);
-  return out;
 }
 
 // The mean over each pixel's 3 x 3 neighbours (wrapping round the ERP's columns).
@@ -118,15 +105,15 @@ int main(int argc, char** argv) {
     const auto db = [&](const ColorLayers& layers) {
       return psnr(denoised(layers), s.reference, s.truth);
     };
-    auto start = std::chrono::steady_clock::now();
+    double start = wall_seconds();
     const ColorLayers uniform = render(8, 2);
-    const double uniform_db = db(uniform), uniform_seconds = seconds_since(start);
+    const double uniform_db = db(uniform), uniform_seconds = wall_seconds() - start;
     const ColorLayers half_a = render(2, 3), half_b = render(2, 4), more = render(more_spp, 5);
     const ColorLayers base = pooled(half_a, half_b);
-    start = std::chrono::steady_clock::now();
+    start = wall_seconds();
     const std::vector<double> estimate =
         box3(squared_difference(denoised(half_a), denoised(half_b)), s.erp.width, s.erp.height);
-    const double estimate_seconds = seconds_since(start);
+    const double estimate_seconds = wall_seconds() - start;
     const std::vector<double> actual = squared_difference(denoised(base), s.reference);
     std::printf("  %-10s %9.2f dB %9.2f dB %9.2f dB %9.2f dB %10.3f %12.3f\n", weather, uniform_db,
                 db(render(16, 6)), db(allocated(base, more, actual, share)),

@@ -3,26 +3,30 @@
 // reference colour, and the non-sky PSNR of 8-bit sRGB colour against that reference.
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/sequence.h"
 
 namespace flowscape {
 
+// Per pixel, the squared difference of two images in 8-bit sRGB, summed over the channels.
+inline std::vector<double> squared_difference(const Image<float>& a, const Image<float>& b) {
+  const Image<std::uint8_t> x = linear_to_srgb8(a.view()), y = linear_to_srgb8(b.view());
+  std::vector<double> out(std::size_t(a.width) * a.height, 0.0);
+  for (std::size_t i = 0; i < x.data.size(); ++i)
+    out[i / 3] += std::pow(double(x.data[i]) - y.data[i], 2);
+  return out;
+}
+
 inline double psnr(const Image<float>& image, const Image<float>& reference,
                    const GroundTruth& truth) {
-  const Image<std::uint8_t> a = linear_to_srgb8(image.view()),
-                            b = linear_to_srgb8(reference.view());
-  double squared = 0;
+  const std::vector<double> squared = squared_difference(image, reference);
+  double sum = 0;
   long count = 0;
-  for (std::size_t i = 0; i < truth.semantic.data.size(); ++i) {
-    if (truth.semantic.data[i] == std::uint8_t(SemanticClass::Sky)) continue;
-    for (int c = 0; c < 3; ++c) {
-      const double d = double(a.data[3 * i + c]) - b.data[3 * i + c];
-      squared += d * d, ++count;
-    }
-  }
-  return 10 * std::log10(255.0 * 255.0 / std::max(squared / count, 1e-12));
+  for (std::size_t i = 0; i < squared.size(); ++i)
+    if (truth.semantic.data[i] != std::uint8_t(SemanticClass::Sky)) sum += squared[i], count += 3;
+  return 10 * std::log10(255.0 * 255.0 / std::max(sum / count, 1e-12));
 }
 
 // One frame of a sequence with its ground truth and converged reference colour.

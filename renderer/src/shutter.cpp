@@ -33,6 +33,19 @@ void add_step(ColorLayers& sum, ColorLayers step, float weight) {
   accumulate(sum.normal, step.normal, 1), accumulate(sum.variance, step.variance, weight * weight);
 }
 
+// One step's colour layers and its depth guide, each timed as a phase of the final pass.
+ColorLayers step_layers(Renderer& renderer, const Projection& projection, double time,
+                        const CameraTrack& camera, const Readout& readout,
+                        const RenderOptions& step) {
+  const ScopedPhase phase("final pass: path tracing");
+  return renderer.color_layers(projection, time, camera, readout, step);
+}
+Image<float> step_depth(Renderer& renderer, const Projection& projection, double time,
+                        const CameraTrack& camera, const Readout& readout) {
+  const ScopedPhase phase("final pass: depth guide");
+  return renderer.depth(projection, time, camera, readout);
+}
+
 // Calls step(time, its options, its weight) for each step of the shutter.
 template <class Step>
 void for_each_step(const Shutter& shutter, const RenderOptions& options, Step&& step) {
@@ -97,7 +110,7 @@ ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, con
                            const Readout& readout) {
   ColorLayers sum;
   for_each_step(shutter, options, [&](double time, const RenderOptions& step, float weight) {
-    add_step(sum, renderer.color_layers(projection, time, camera, readout, step), weight);
+    add_step(sum, step_layers(renderer, projection, time, camera, readout, step), weight);
   });
   return sum;
 }
@@ -106,7 +119,7 @@ Image<float> shutter_depth(Renderer& renderer, const Projection& projection, con
                            const CameraTrack& camera, int steps, const Readout& readout) {
   DepthSum depth;
   for (double time : shutter_times(shutter, steps))
-    depth.add(renderer.depth(projection, time, camera, readout));
+    depth.add(step_depth(renderer, projection, time, camera, readout));
   return depth.mean();
 }
 
@@ -119,12 +132,8 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
-      {
-        const ScopedPhase phase("final pass: path tracing");
-        add_step(faces[f], renderer.color_layers(projection, time, camera, {}, step), weight);
-      }
-      const ScopedPhase phase("final pass: depth guide");
-      if (depth_guide) depths[f].add(renderer.depth(projection, time, camera));
+      add_step(faces[f], step_layers(renderer, projection, time, camera, {}, step), weight);
+      if (depth_guide) depths[f].add(step_depth(renderer, projection, time, camera, {}));
     }
   });
   CubeFrame cube;

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "flowscape/core/profile.h"
 #include "flowscape/core/random.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
@@ -96,6 +97,7 @@ Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequenc
 Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequence,
                             ImageView<const float> color, const Projection& camera, bool lens,
                             const Exposure& exposure, int frame, int view) {
+  const ScopedPhase phase("final pass: sensor and lens");
   SensorModel sensor = release_sensor(config);
   if (!lens) sensor.vignetting = false, sensor.chromatic_aberration = 0;
   Image<float> nits(color.width, color.height, 3);

@@ -137,7 +137,6 @@ FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequ
                                Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
                                int frame) {
   const Image<float> faces = final_cube_color(config, sequence, renderer, frame);
-  const ScopedPhase phase("final pass: sensor and lens");
   FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
   const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
   int view = 1;
