@@ -150,6 +150,9 @@ int main(int argc, char** argv) {
   option("--indirect-spp", "indirect_spp", defaults.indirect_spp,
          "of those, how many gather indirect light (more than --spp: all; 0: 4 when denoised, "
          "all when not)");
+  option("--adaptive", "adaptive", defaults.adaptive,
+         "share of the pixels (0-1) that take half of --spp where the denoised colour is "
+         "estimated worst, the others the first half only; 0: every pixel --spp");
   option("--denoise", "denoise", defaults.denoise,
          "atrous: the colour denoised with its feature layers; oidn: by OIDN's trained U-Net "
          "(weights from scripts/install_deps.sh); none: the raw path tracer");

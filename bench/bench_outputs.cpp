@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   const TruthRequest base{sequence.frame_pair(frame)};
   const double color = median_seconds(repeats, [&] {
     const CubeFrame cube = render_cube(renderer, config.face_size, base, &options);
-    denoise_cube(cube);
+    denoise_cube(cube.color, cube.truth);
   });
   const double six = median_seconds(repeats, [&] { render_truth(renderer, config, base); });
   std::printf("  baseline: colour (6 faces, %d spp, denoised)        %7.3f s\n", config.spp, color);

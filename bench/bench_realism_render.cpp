@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
         const TruthRequest request{sequence.frame_pair(frame)};
         const RenderOptions options = sequence.color_options(config, frame);
         const CubeFrame cube = render_cube(renderer, face_size, request, &options);
-        write_faces(dir, "color", linear_to_srgb8(denoised_cube_color(config, cube).view()));
+        write_faces(dir, "color",
+                    linear_to_srgb8(denoised_cube_color(config, cube.color, cube.truth).view()));
         write_faces(dir, "instance", cube.truth.instance);
         write_faces(dir, "semantic", cube.truth.semantic);
         std::ofstream(dir / "actors.json") << nlohmann::json{

@@ -11,7 +11,8 @@
 // WriteOverlap::None) against the new one (writing a frame while the next renders, the renderer's
 // levers on), with how many cores were busy, and where the new path's time went by phase; then
 // each renderer lever on its own against 0.10's and 0.11's renderer (RenderOptions and
-// TruthRequest switch it back) on the first frame of each sequence of the fixed sample below,
+// TruthRequest switch it back) and 0.12's final pass (4 shutter steps, not the clean frame in the
+// middle) on the first frame of each sequence of the fixed sample below,
 // alternating, median of max(runs, 1), and whether any image changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
 // time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
@@ -26,6 +27,7 @@
 #include <filesystem>
 
 #include "flowscape/core/profile.h"
+#include "flowscape/release/final_pass.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
 
@@ -147,6 +149,14 @@ bool same_images(const Rendered& a, const Rendered& b) {
   return same(a.floats, b.floats) && same(a.bytes, b.bytes) && same(a.words, b.words);
 }
 
+// Points out.floats at every layer of out.colour.
+void compare_colour(Rendered& out) {
+  for (const ColorLayers& l : out.colour)
+    for (const Image<float>* layer :
+         {&l.direct, &l.indirect, &l.specular, &l.other, &l.albedo, &l.normal, &l.variance})
+      out.floats.push_back(&layer->data);
+}
+
 // The cube faces' path tracing of a frame (their colour layers).
 Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
                      const RenderOptions& options) {
@@ -159,10 +169,25 @@ Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
     out.rays += stats.rays;
   }
   out.seconds = seconds_since(start);
-  for (const ColorLayers& l : out.colour)
-    for (const Image<float>* layer :
-         {&l.direct, &l.indirect, &l.specular, &l.other, &l.albedo, &l.normal, &l.variance})
-      out.floats.push_back(&layer->data);
+  compare_colour(out);
+  return out;
+}
+
+// The final pass's cube over the frame's shutter: 0.12's 4 steps, or the clean cube (rendered
+// first, untimed) as the middle third and 2 outer thirds.
+Rendered final_cube(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
+                    bool clean_centre) {
+  const RenderOptions options = sequence.color_options(config, 0);
+  const CubeFrame clean = render_cube(renderer, config.face_size, sequence.frame_pair(0), &options);
+  Rendered out;
+  const auto start = std::chrono::steady_clock::now();
+  out.colour.push_back(shutter_cube(
+                           renderer, config.face_size, frame_shutter(config, sequence, 0),
+                           [&](double t) { return sequence.city.rig(t); }, options, true,
+                           clean_centre ? &clean : nullptr)
+                           .color);
+  out.seconds = seconds_since(start);
+  compare_colour(out);
   return out;
 }
 
@@ -187,8 +212,8 @@ Rendered frame_truth(Renderer& renderer, const ReleaseConfig& config, const Trut
   return out;
 }
 
-// A renderer lever: what it renders of a sequence's first frame the old way (flowscape 0.11's)
-// and with the lever.
+// A renderer lever: what it renders of a sequence's first frame the old way (flowscape 0.11's;
+// 0.12's for the final pass) and with the lever.
 struct Lever {
   const char* name;
   Rendered (*render)(const ReleaseConfig&, const Sequence&, Renderer&, bool with_lever);
@@ -206,16 +231,20 @@ constexpr Lever kLevers[] = {
            truth_plan(sequence, release_layout(config), 0, config.frames).request;
        request.single_rays = !with;
        return frame_truth(renderer, config, request);
+     }},
+    {"final pass: the clean frame as the shutter's middle",
+     [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
+       return final_cube(config, sequence, renderer, with);
      }}};
 
-// Each lever on its own against 0.11's way, on the first frame of each sequence of the fixed
+// Each lever on its own against the old way, on the first frame of each sequence of the fixed
 // sample, alternating, the median of `runs`, and whether every image stayed the same.
 void print_render_levers(const ReleaseConfig& config, const std::vector<SequencePlan>& sample,
                          int runs) {
   runs = std::max(1, runs);
   std::printf(
-      "  renderer levers, each against 0.11's renderer on the first frames of the fixed sample, "
-      "median of %d:\n",
+      "  renderer levers, each against the way before it (0.11's renderer, 0.12's final pass) on "
+      "the first frames of the fixed sample, median of %d:\n",
       runs);
   for (const Lever& lever : kLevers) {
     double before = 0, after = 0;
@@ -237,7 +266,7 @@ void print_render_levers(const ReleaseConfig& config, const std::vector<Sequence
       before += times[0][times[0].size() / 2], after += times[1][times[1].size() / 2];
     }
     const double frames = double(sample.size());
-    std::printf("    %-48s 0.11 %6.3f s/frame", lever.name, before / frames);
+    std::printf("    %-52s before %6.3f s/frame", lever.name, before / frames);
     if (rays > 0) std::printf(" (%5.2f M rays/s)", rays / before / 1e6);
     std::printf(", with it %6.3f s/frame: %+5.1f %%, %s\n", after / frames,
                 100 * (after / before - 1), same ? "every byte the same" : "images changed");

@@ -1,6 +1,6 @@
 #pragma once
-// Internal: stacking the cube's faces (geometry.h's N x 6N layout), for render_cube and the
-// final pass's shutter_cube.
+// Internal: stacking the cube's faces (geometry.h's N x 6N layout) and cutting them out, for
+// render_cube, the denoiser and the final pass's shutter_cube.
 #include <algorithm>
 
 #include "flowscape/renderer/renderer.h"
@@ -21,6 +21,21 @@ inline void put_face(ColorLayers& cube, Face face, const ColorLayers& layers) {
   put_face(cube.specular, face, layers.specular), put_face(cube.other, face, layers.other);
   put_face(cube.albedo, face, layers.albedo), put_face(cube.normal, face, layers.normal);
   put_face(cube.variance, face, layers.variance);
+}
+
+// A copy of `face` of the stacked `cube`.
+template <class T>
+Image<T> face_of(const Image<T>& cube, Face face) {
+  const ImageView<const T> view = face_view(cube.view(), face);
+  Image<T> image(view.width, view.height, view.channels);
+  std::copy(view.data, view.data + image.data.size(), image.data.begin());
+  return image;
+}
+
+inline ColorLayers face_of(const ColorLayers& cube, Face face) {
+  return {face_of(cube.direct, face),  face_of(cube.indirect, face), face_of(cube.specular, face),
+          face_of(cube.other, face),   face_of(cube.albedo, face),   face_of(cube.normal, face),
+          face_of(cube.variance, face)};
 }
 
 }  // namespace flowscape

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cube_faces.h"
+
 namespace flowscape {
 namespace {
 
@@ -175,29 +177,16 @@ Image<float> denoise(const ColorLayers& layers, const DenoiseGuide& guide,
   return color;
 }
 
-namespace {
+namespace {}  // namespace
 
-template <class T>
-Image<T> face_of(const Image<T>& cube, Face face) {
-  const ImageView<const T> view = face_view(cube.view(), face);
-  Image<T> image(view.width, view.height, view.channels);
-  std::copy(view.data, view.data + image.data.size(), image.data.begin());
-  return image;
-}
-
-}  // namespace
-
-Image<float> denoise_cube(const CubeFrame& cube, const DenoiseOptions& options) {
-  const ColorLayers& c = cube.color;
+Image<float> denoise_cube(const ColorLayers& c, const GroundTruth& truth,
+                          const DenoiseOptions& options) {
   const int N = c.direct.width;
   Image<float> out(N, 6 * N, 3);
   for (Face face : kFaces) {
-    const ColorLayers layers{face_of(c.direct, face),   face_of(c.indirect, face),
-                             face_of(c.specular, face), face_of(c.other, face),
-                             face_of(c.albedo, face),   face_of(c.normal, face),
-                             face_of(c.variance, face)};
-    const Image<float> depth = face_of(cube.truth.depth, face);
-    const Image<std::uint16_t> instance = face_of(cube.truth.instance, face);
+    const ColorLayers layers = face_of(c, face);
+    const Image<float> depth = face_of(truth.depth, face);
+    const Image<std::uint16_t> instance = face_of(truth.instance, face);
     const Projection camera = Projection::cube_face(face, N);
     const Image<float> color = denoise(layers, {&camera, depth.view(), instance.view()}, options);
     std::copy(color.data.begin(), color.data.end(), face_view(out.view(), face).data);

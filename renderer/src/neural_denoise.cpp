@@ -121,8 +121,8 @@ NeuralFeatures neural_features(const ColorLayers& layers) {
   return f;
 }
 
-Image<float> neural_denoise_cube(const UNet& unet, const CubeFrame& cube) {
-  const NeuralFeatures f = neural_features(cube.color);
+Image<float> neural_denoise_cube(const UNet& unet, const ColorLayers& color) {
+  const NeuralFeatures f = neural_features(color);
   const int N = f.color.width;
   const double exposure = autoexposure(f.color.view());
   Image<float> out(N, 6 * N, 3);

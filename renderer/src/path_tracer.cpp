@@ -484,6 +484,15 @@ struct PixelGroupTracer {
   }
 };
 
+// RenderOptions::pixels: whether (x, y) is traced, and the first traced pixel of row y from x on.
+bool traced(ImageView<const std::uint8_t> pixels, int x, int y) {
+  return !pixels.data || *pixels.pixel(x, y);
+}
+int next_traced(ImageView<const std::uint8_t> pixels, int y, int x, int end) {
+  while (x < end && !traced(pixels, x, y)) ++x;
+  return x;
+}
+
 }  // namespace
 
 ColorLayers color_layers_of(int width, int height) {
@@ -505,9 +514,15 @@ std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const
   const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
   tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
     std::uint64_t block_rays = 0;
+    const int end = block.cols().end();
     for (int y = block.rows().begin(); y < block.rows().end(); ++y)
-      for (int x = block.cols().begin(); x < block.cols().end(); x += group_size)
-        tracer.trace(y, x, std::min(x + group_size, block.cols().end()), out, block_rays);
+      for (int x = next_traced(options.pixels, y, block.cols().begin(), end); x < end;) {
+        int group_end = x + 1;
+        while (group_end < std::min(x + group_size, end) && traced(options.pixels, group_end, y))
+          ++group_end;
+        tracer.trace(y, x, group_end, out, block_rays);
+        x = next_traced(options.pixels, y, group_end, end);
+      }
     rays += block_rays;
   });
   return rays;

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -36,6 +37,41 @@ struct Renderer::Impl {
   }
 };
 
+namespace {
+
+// RenderOptions::pixels, where set, must be a one-channel mask of the image's size.
+void require_mask_size(const char* caller, ImageView<const std::uint8_t> mask, int width,
+                       int height) {
+  if (mask.data && (mask.width != width || mask.height != height || mask.channels != 1))
+    throw std::invalid_argument(std::string(caller) + ": the mask of the pixels to trace is " +
+                                std::to_string(mask.width) + " x " + std::to_string(mask.height) +
+                                " x " + std::to_string(mask.channels) + ", the image " +
+                                std::to_string(width) + " x " + std::to_string(height) + " x 1");
+}
+
+// Pixel i's variance of `a` pooled with `b`'s (before their means are): each render's second
+// moment of a sample's luminance is its variance of the mean times its samples plus its mean
+// squared.
+void pool_variance(ColorLayers& a, int a_samples, const ColorLayers& b, int b_samples,
+                   std::size_t i) {
+  const double n = a_samples + b_samples;
+  const Image<float>* a_means[3] = {&a.direct, &a.indirect, &a.specular};
+  const Image<float>* b_means[3] = {&b.direct, &b.indirect, &b.specular};
+  const auto mean_at = [i](const Image<float>& layer) {
+    const float* p = &layer.data[3 * i];
+    return luminance(Rgb(p[0], p[1], p[2]));
+  };
+  for (int l = 0; l < 3; ++l) {
+    const double ma = mean_at(*a_means[l]), mb = mean_at(*b_means[l]);
+    const double moment = (a_samples * a.variance.data[3 * i + l] + ma * ma) * a_samples +
+                          (b_samples * b.variance.data[3 * i + l] + mb * mb) * b_samples;
+    const double mean = (a_samples * ma + b_samples * mb) / n;
+    a.variance.data[3 * i + l] = float(std::max(0.0, moment / n - mean * mean) / n);
+  }
+}
+
+}  // namespace
+
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Renderer::~Renderer() = default;
 
@@ -44,6 +80,23 @@ Image<float> raw_color(const ColorLayers& layers) {
   for (const Image<float>* layer : {&layers.indirect, &layers.specular, &layers.other})
     for (std::size_t i = 0; i < sum.data.size(); ++i) sum.data[i] += layer->data[i];
   return sum;
+}
+
+ColorLayers pooled(ColorLayers a, int a_samples, const ColorLayers& b, int b_samples) {
+  const double n = a_samples + b_samples, wa = a_samples / n, wb = b_samples / n;
+  tbb::parallel_for(std::size_t(0), a.direct.pixel_count(), [&](std::size_t i) {
+    pool_variance(a, a_samples, b, b_samples, i);
+    for (std::size_t c = 3 * i; c < 3 * i + 3; ++c) {
+      for (auto [to, from] : {std::pair{&a.direct, &b.direct},
+                              {&a.indirect, &b.indirect},
+                              {&a.specular, &b.specular},
+                              {&a.other, &b.other},
+                              {&a.albedo, &b.albedo}})
+        to->data[c] = float(wa * to->data[c] + wb * from->data[c]);
+      a.normal.data[c] += b.normal.data[c];
+    }
+  });
+  return a;
 }
 
 Image<float> Renderer::color(const Projection& projection, const FramePair& frames,
@@ -60,6 +113,7 @@ ColorLayers Renderer::color_layers(const Projection& projection, const FramePair
 ColorLayers Renderer::color_layers(const Projection& projection, double time,
                                    const CameraTrack& camera, const Readout& readout,
                                    const RenderOptions& options, RenderStats* stats) {
+  require_mask_size("color_layers", options.pixels, projection.width, projection.height);
   ColorLayers out = color_layers_of(projection.width, projection.height);
   std::uint64_t rays = 0;
   for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
@@ -299,11 +353,25 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& req
                                 {&gt.normal, &all.normal},
                                 {&gt.shading_normal, &all.shading_normal}})
       if (!image->data.empty()) put_face(*faces, face, *image);
-    if (!color_options) continue;
-    const ScopedPhase phase("cube faces: path tracing");
-    put_face(cube.color, face, renderer.color_layers(projection, request.pair, *color_options));
   }
+  if (color_options)
+    cube.color = cube_color_layers(renderer, face_size, request.pair, *color_options);
   return cube;
+}
+
+ColorLayers cube_color_layers(Renderer& renderer, int face_size, const FramePair& frames,
+                              const RenderOptions& options) {
+  const ImageView<const std::uint8_t> mask = options.pixels;
+  require_mask_size("cube_color_layers", mask, face_size, 6 * face_size);
+  const ScopedPhase phase("cube faces: path tracing");
+  ColorLayers color;
+  for (Face face : kFaces) {
+    RenderOptions face_options = options;
+    if (mask.data) face_options.pixels = face_view(mask, face);
+    put_face(color, face,
+             renderer.color_layers(Projection::cube_face(face, face_size), frames, face_options));
+  }
+  return color;
 }
 
 }  // namespace flowscape

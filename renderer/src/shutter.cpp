@@ -61,6 +61,21 @@ void for_each_step(const Shutter& shutter, const RenderOptions& options, Step&& 
   }
 }
 
+// Calls step(time, its options) for the outer thirds of the shutter, with a quarter of `options`'
+// samples each (shutter_layers with a centre).
+template <class Step>
+void for_each_outer_third(const Shutter& shutter, const RenderOptions& options, Step&& step) {
+  RenderOptions outer = options;
+  outer.samples_per_pixel = std::max(1, options.samples_per_pixel / 4);
+  if (options.indirect_samples > 0)
+    outer.indirect_samples = std::max(1, options.indirect_samples / 4);
+  const double sixth = (shutter.close - shutter.open) / 6;
+  for (int k = 0; k < 2; ++k) {
+    outer.seed = derived_seed(options.seed, std::uint64_t(k), 8);
+    step(k == 0 ? shutter.open + sixth : shutter.close - sixth, outer);
+  }
+}
+
 // The depth of a pixel's centre ray summed where finite, and how often it was.
 struct DepthSum {
   Image<float> sum, count;
@@ -115,6 +130,17 @@ ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, con
   return sum;
 }
 
+ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const RenderOptions& options,
+                           const Readout& readout, const ColorLayers& centre) {
+  ColorLayers sum;
+  add_step(sum, centre, 1.0f / 3);
+  for_each_outer_third(shutter, options, [&](double time, const RenderOptions& outer) {
+    add_step(sum, step_layers(renderer, projection, time, camera, readout, outer), 1.0f / 3);
+  });
+  return sum;
+}
+
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, int steps, const Readout& readout) {
   DepthSum depth;
@@ -123,19 +149,42 @@ Image<float> shutter_depth(Renderer& renderer, const Projection& projection, con
   return depth.mean();
 }
 
+Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const Readout& readout,
+                           const Image<float>& centre) {
+  DepthSum depth;
+  depth.add(centre);
+  for_each_outer_third(shutter, {}, [&](double time, const RenderOptions&) {
+    depth.add(step_depth(renderer, projection, time, camera, readout));
+  });
+  return depth.mean();
+}
+
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
-                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide) {
+                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide,
+                       const CubeFrame* centre) {
   // step by step, every face at each (the scene posed once per step)
   std::array<ColorLayers, 6> faces;
   std::array<DepthSum, 6> depths;
-  for_each_step(shutter, options, [&](double time, const RenderOptions& step, float weight) {
+  const auto step = [&](double time, const RenderOptions& step, float weight) {
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
       add_step(faces[f], step_layers(renderer, projection, time, camera, {}, step), weight);
       if (depth_guide) depths[f].add(step_depth(renderer, projection, time, camera, {}));
     }
-  });
+  };
+  if (centre) {
+    for (Face face : kFaces) {
+      add_step(faces[int(face)], face_of(centre->color, face), 1.0f / 3);
+      if (depth_guide) depths[int(face)].add(face_of(centre->truth.depth, face));
+    }
+    for_each_outer_third(shutter, options, [&](double time, const RenderOptions& outer) {
+      step(time, outer, 1.0f / 3);
+    });
+  } else {
+    for_each_step(shutter, options, step);
+  }
   CubeFrame cube;
   for (Face face : kFaces) {
     put_face(cube.color, face, faces[int(face)]);

@@ -170,3 +170,21 @@ TEST_CASE("a release of flowscape 0.8 (no ego_routes in config.json) resumes as 
   CHECK_THROWS_WITH(claim_release(config, dir.path, false),
                     Catch::Contains("ego_routes: \"free\" recorded, \"mix\" now"));
 }
+
+TEST_CASE("adaptive sampling's share is checked, and a release of 0.12 resumes as uniform") {
+  CHECK(ReleaseConfig{}.adaptive == 0);
+  for (const nlohmann::json& share : {nlohmann::json(1.5), nlohmann::json(-0.1)})
+    CHECK_THROWS_WITH(release_config_from_json({{"adaptive", share}}),
+                      Catch::Contains("adaptive must be in 0..1"));
+  CHECK(release_config_from_json({{"adaptive", 0}}).adaptive == 0);
+  TempDir dir;
+  ReleaseConfig config;
+  config.maps = 1, config.sequences_per_map = 1, config.frames = 2, config.adaptive = 0;
+  nlohmann::json old = to_json(config);
+  old.erase("adaptive");
+  write_text(dir.path / "config.json", old.dump());
+  CHECK_NOTHROW(claim_release(config, dir.path, false));
+  config.adaptive = 0.25;
+  CHECK_THROWS_WITH(claim_release(config, dir.path, false),
+                    Catch::Contains("adaptive: 0.0 recorded, 0.25 now"));
+}

@@ -421,3 +421,34 @@ TEST_CASE("a release grows by maps: the sequences it had keep their bytes") {
   CHECK_THROWS_WITH(write_release(config, dir.path, false),
                     Catch::Contains("this release was made with another config"));
 }
+
+TEST_CASE("adaptive sampling changes the colour and nothing else, and the card says so") {
+  for (const bool cube : {true, false}) {  // the faces' colour, or the ERP's traced directly
+    INFO("cube " << cube);
+    TempDir uniform_dir, adaptive_dir;
+    ReleaseConfig config = tiny_release_config(1, 2);
+    config.spp = 8, config.cube = cube;
+    write(config, uniform_dir.path);
+    config.adaptive = 0.25;
+    write(config, adaptive_dir.path);
+    const fs::path uniform = sequence_dir(uniform_dir.path, "map00_seq00"),
+                   adaptive = sequence_dir(adaptive_dir.path, "map00_seq00");
+    int truth = 0, changed = 0;
+    for (const fs::path& file : release_layout(config).frame_files(0, 2)) {
+      INFO(file);
+      if (file.string().find("color") != std::string::npos) {
+        changed += file_bytes(adaptive / file) != file_bytes(uniform / file);
+      } else {
+        CHECK(file_bytes(adaptive / file) == file_bytes(uniform / file));
+        ++truth;
+      }
+    }
+    CHECK(truth > (cube ? 20 : 5));
+    CHECK(changed == (cube ? 7 : 1));  // the ERP and the six faces
+    write_dataset_card(adaptive_dir.path, config, nullptr);
+    std::ifstream card(adaptive_dir.path / "README.md");
+    const std::string text((std::istreambuf_iterator<char>(card)),
+                           std::istreambuf_iterator<char>());
+    CHECK_THAT(text, Catch::Contains("the other half on the 25 % of the pixels"));
+  }
+}

@@ -102,6 +102,37 @@ TEST_CASE("a board moving under a box shutter blurs into the closed-form profile
   CHECK(error < 0.02);
 }
 
+TEST_CASE("the clean frame stands for the shutter's middle third, the outer thirds traced") {
+  const double focal = kWidth / 2.0 / std::tan(30 * indep::pi / 180);
+  const double speed = 9 * kFront / focal * 60, time = 0.5;  // 9 pixels over the shutter
+  const Scene scene = glowing_board(speed, time);
+  Renderer renderer(scene);
+  const Projection camera = Projection::pinhole(kWidth, kHeight, 60);
+  const double left = kWidth / 2.0 - focal * 3.6 / kFront,
+               right = kWidth / 2.0 + focal * 3.6 / kFront;
+  const CameraTrack still = [](double) { return Pose::Identity(); };
+  const RenderOptions options{64, 1, 5};
+  const ColorLayers clean = renderer.color_layers(
+      camera, FramePair{time, time, Pose::Identity(), Pose::Identity()}, options);
+  // the board at the middle times of the thirds: 3 pixels left, where it is, 3 pixels right
+  const auto at = [&](double shift) { return expected_profile(left + shift, right + shift, 0); };
+  std::vector<double> thirds(kWidth), outer(kWidth);
+  for (int x = 0; x < kWidth; ++x)
+    outer[x] = (at(-3)[x] + at(3)[x]) / 3, thirds[x] = outer[x] + at(0)[x] / 3;
+  const Shutter shutter = centred_shutter(time, 180);
+  const std::vector<double> seen = column_profile(
+      raw_color(shutter_layers(renderer, camera, shutter, still, options, {}, clean)));
+  INFO("relative L1 difference from three thirds: " << relative_l1(seen, thirds));
+  CHECK(relative_l1(seen, thirds) < 0.02);
+  // a black centre weighs a third: what is left is the outer thirds'
+  ColorLayers black = clean;
+  for (Image<float>* layer : {&black.direct, &black.indirect, &black.specular, &black.other})
+    std::fill(layer->data.begin(), layer->data.end(), 0.f);
+  const std::vector<double> outer_seen = column_profile(
+      raw_color(shutter_layers(renderer, camera, shutter, still, options, {}, black)));
+  CHECK(relative_l1(outer_seen, outer) < 0.02);
+}
+
 TEST_CASE("a translating camera blurs a still board by its flow times the shutter's share") {
   const double focal = kWidth / 2.0 / std::tan(30 * indep::pi / 180);
   const Scene scene = glowing_board(0);

@@ -171,33 +171,6 @@ TEST_CASE("meshes without a class per triangle are refused") {
 
 namespace {
 
-// A sunlit world: a checkered wall 10 m ahead, a ground plane 1.7 m below the rig, and a green
-// clear-coated box driving across.
-Scene sunlit_street() {
-  Scene scene = textured_plane(10, 60);
-  Material wall;
-  wall.albedo = {0.8f, 0.5f, 0.2f};
-  wall.pattern = checker(1, {0.0625f, 0.2f, 1.5f});  // cells of (0.05, 0.1, 0.3)
-  Material paint;
-  paint.kind = Material::Kind::Glossy, paint.albedo = {0.1f, 0.6f, 0.1f};
-  scene.materials = {Material{}, wall, paint};
-  scene.world.materials = {1, 1};
-  Mesh ground;
-  add_box(ground, Eigen::Vector3f(-50, -50, -1.8f), Eigen::Vector3f(50, 50, -1.7f),
-          SemanticClass::Road);
-  for (std::size_t t = 0; t < ground.triangles.size(); ++t) {
-    scene.world.triangles.push_back(ground.triangles[t] +
-                                    Eigen::Vector3i::Constant(int(scene.world.vertices.size())));
-    scene.world.classes.push_back(SemanticClass::Road);
-    scene.world.materials.push_back(0);
-  }
-  scene.world.vertices.insert(scene.world.vertices.end(), ground.vertices.begin(),
-                              ground.vertices.end());
-  scene.actors.push_back(sliding_box({6, 1, -0.7}, {0, -3, 0}, 2));
-  scene.environment.sun_direction = Vec3(-0.5, 0.3, 0.8).normalized();  // lights the wall's face
-  return scene;
-}
-
 // A road 1.7 m below the origin under a black sky: only the sun or lamps light it.
 Scene road_under_black_sky(const Eigen::Vector3f& albedo) {
   Scene scene;

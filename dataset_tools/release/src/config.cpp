@@ -33,6 +33,7 @@ void for_each_field(Config& c, Visit&& visit) {
   visit("sequences_per_map", c.sequences_per_map);
   visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
   visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
+  visit("adaptive", c.adaptive);
   visit("weathers", c.weathers), visit("times_of_day", c.times_of_day);
   visit("skies", c.skies);
   visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
@@ -88,6 +89,7 @@ void validate(const ReleaseConfig& c) {
   require(c.spp >= 1 && c.spp <= 65536, "spp must be in 1..65536");
   require(c.indirect_spp >= 0 && c.indirect_spp <= 65536,
           "indirect_spp must be in 0..65536 (0: as the denoiser wants)");
+  require(c.adaptive >= 0 && c.adaptive <= 1, "adaptive must be in 0..1 (0: uniform sampling)");
   require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
   require(c.denoise == "atrous" || c.denoise == "oidn" || c.denoise == "none",
           "denoise must be atrous, oidn or none");

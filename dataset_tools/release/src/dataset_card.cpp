@@ -8,6 +8,7 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/classes.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
@@ -93,7 +94,13 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
        << c.face_size << ", focal " << c.face_size / 2.0
        << " px; the ERP colour is stitched from them\n";
   md << "- colour path traced with " << c.spp << " samples per pixel (" << indirect_samples(c)
-     << " of them gathering indirect light), "
+     << " of them gathering indirect light"
+     << (sample_split(c.spp, c.adaptive).half > 0
+             ? "; on average, adaptively: half everywhere, the other half on the " +
+                   std::to_string(int(std::lround(100 * c.adaptive))) +
+                   " % of the pixels where the denoised halves disagree most"
+             : std::string())
+     << "), "
      << (c.denoise == "none"   ? std::string("not denoised")
          : c.denoise == "oidn" ? "denoised by OIDN's trained U-Net (" + c.denoise_model +
                                      " model, HDR colour + albedo + normal; Apache-2.0 weights)"

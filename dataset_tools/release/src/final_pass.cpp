@@ -47,25 +47,26 @@ Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
 
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
                          const Projection& camera, const CameraTrack& track, int frame,
-                         const Readout& readout) {
+                         const Readout& readout, const ColorLayers& clean,
+                         const Image<float>& clean_depth) {
   const RenderOptions options = sequence.color_options(config, frame);
   const Shutter shutter = frame_shutter(config, sequence, frame);
-  const ColorLayers layers = shutter_layers(renderer, camera, shutter, track, options, readout);
-  const Image<float> depth =
-      config.denoise == "atrous"
-          ? shutter_depth(renderer, camera, shutter, track, shutter_steps(options), readout)
-          : Image<float>{};
+  const ColorLayers layers =
+      shutter_layers(renderer, camera, shutter, track, options, readout, clean);
+  const Image<float> depth = config.denoise == "atrous" ? shutter_depth(renderer, camera, shutter,
+                                                                        track, readout, clean_depth)
+                                                        : Image<float>{};
   const Image<std::uint16_t> no_ids(camera.width, camera.height, 1);
   return denoised_color(config, layers, camera, depth.view(), no_ids.view());
 }
 
 Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
-                              Renderer& renderer, int frame) {
+                              Renderer& renderer, int frame, const CubeFrame& clean) {
   const RenderOptions options = sequence.color_options(config, frame);
   const CubeFrame cube = shutter_cube(
       renderer, config.face_size, frame_shutter(config, sequence, frame),
-      [&](double t) { return sequence.city.rig(t); }, options, config.denoise == "atrous");
-  return denoised_cube_color(config, cube);
+      [&](double t) { return sequence.city.rig(t); }, options, config.denoise == "atrous", &clean);
+  return denoised_cube_color(config, cube.color, cube.truth);
 }
 
 namespace {
@@ -124,8 +125,7 @@ nlohmann::json final_json(const ReleaseConfig& config, const Sequence& sequence,
     per_frame.push_back(
         {{"adapted_key", e.adapted_key}, {"integration", e.integration}, {"gain", e.gain}});
   return {{"shutter_angle", config.shutter_angle},
-          {"shutter_steps",
-           shutter_steps({config.spp, config.max_bounces, 0, true, indirect_samples(config)})},
+          {"shutter_steps", 3},  // the clean frame in the middle third (shutter.h)
           {"sensor",
            {{"f_number", s.f_number},
             {"pixel_pitch_um", s.pixel_pitch * 1e6},

@@ -10,6 +10,7 @@
 #include "flowscape/core/files.h"
 #include "flowscape/core/profile.h"
 #include "flowscape/core/random.h"
+#include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/classes.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/renderer/denoise.h"
@@ -104,11 +105,22 @@ const UNet& release_unet(const ReleaseConfig& config) {
   return *unet;
 }
 
-Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube) {
+Image<float> denoised_cube_color(const ReleaseConfig& config, const ColorLayers& color,
+                                 const GroundTruth& truth) {
   const ScopedPhase phase("denoising");
-  if (config.denoise == "none") return raw_color(cube.color);
-  if (config.denoise == "oidn") return neural_denoise_cube(release_unet(config), cube);
-  return denoise_cube(cube);
+  if (config.denoise == "none") return raw_color(color);
+  if (config.denoise == "oidn") return neural_denoise_cube(release_unet(config), color);
+  return denoise_cube(color, truth);
+}
+
+ColorLayers release_cube_layers(const ReleaseConfig& config, const Sequence& sequence,
+                                Renderer& renderer, const GroundTruth& truth, int frame) {
+  return adaptive_color_layers(
+      [&](const RenderOptions& options) {
+        return cube_color_layers(renderer, config.face_size, sequence.frame_pair(frame), options);
+      },
+      [&](const ColorLayers& color) { return denoised_cube_color(config, color, truth); },
+      sequence.color_options(config, frame), config.adaptive);
 }
 
 Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
@@ -135,14 +147,25 @@ Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
-  const RenderOptions options = sequence.color_options(config, frame);
-  const ColorLayers layers = [&] {
-    const ScopedPhase phase("path tracing");
-    return view.readout.global()
-               ? renderer.color_layers(camera, view.pair, options)
-               : renderer.color_layers(camera, view.pair.time, view.track, view.readout, options);
-  }();
-  return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
+  return denoised_color(config,
+                        release_layers(config, sequence, renderer, camera, view, frame, truth),
+                        camera, truth.depth.view(), truth.instance.view());
+}
+
+ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, const TruthRequest& view,
+                           int frame, const GroundTruth& truth) {
+  return adaptive_color_layers(
+      [&](const RenderOptions& options) {
+        const ScopedPhase phase("path tracing");
+        return view.readout.global() ? renderer.color_layers(camera, view.pair, options)
+                                     : renderer.color_layers(camera, view.pair.time, view.track,
+                                                             view.readout, options);
+      },
+      [&](const ColorLayers& layers) {
+        return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
+      },
+      sequence.color_options(config, frame), config.adaptive);
 }
 
 Sequence make_sequence(const SequenceSpec& spec) {

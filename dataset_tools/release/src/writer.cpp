@@ -135,8 +135,8 @@ struct FinalFlowscape {
 };
 FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequence,
                                Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
-                               int frame) {
-  const Image<float> faces = final_cube_color(config, sequence, renderer, frame);
+                               int frame, const CubeFrame& clean) {
+  const Image<float> faces = final_cube_color(config, sequence, renderer, frame, clean);
   FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
   const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
   int view = 1;
@@ -195,19 +195,19 @@ FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLay
     return renderer.ground_truth(erp, plan.request);
   }();
   Image<float> erp_color;
+  ColorLayers erp_layers;  // without faces
   CubeFrame cube;
   Image<float> faces_color;
   if (map) {
-    const RenderOptions options = sequence.color_options(config, frame);
-    {
-      const ScopedPhase phase("cube faces: ground truth and path tracing");
-      cube = render_cube(renderer, config.face_size, plan.request, &options);
-    }
-    faces_color = denoised_cube_color(config, cube);
+    cube = render_cube(renderer, config.face_size, plan.request, nullptr);
+    cube.color = release_cube_layers(config, sequence, renderer, cube.truth, frame);
+    faces_color = denoised_cube_color(config, cube.color, cube.truth);
     const ScopedPhase phase("cube to ERP");
     erp_color = resample_bilinear(map->sampling, faces_color);
   } else {
-    erp_color = release_color(config, sequence, renderer, erp, frame, truth);
+    erp_layers = release_layers(config, sequence, renderer, erp,
+                                TruthRequest{sequence.frame_pair(frame)}, frame, truth);
+    erp_color = denoised_color(config, erp_layers, erp, truth.depth.view(), truth.instance.view());
   }
   Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
   FinalFlowscape final;
@@ -215,10 +215,11 @@ FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLay
     const ScopedPhase phase("final pass");
     *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), erp, frame);
     if (map) {
-      final = final_flowscape(config, sequence, renderer, *map, *exposure, frame);
+      final = final_flowscape(config, sequence, renderer, *map, *exposure, frame, cube);
     } else {
       const Image<float> linear = final_color(
-          config, sequence, renderer, erp, [&](double t) { return sequence.city.rig(t); }, frame);
+          config, sequence, renderer, erp, [&](double t) { return sequence.city.rig(t); }, frame,
+          {}, erp_layers, truth.depth);
       final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
     }
   }
@@ -249,16 +250,19 @@ FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& l
       const ScopedPhase phase("ground truth");
       return renderer.ground_truth(camera.projection, request);
     }();
-    const Image<float> color =
-        release_color(config, sequence, renderer, camera.projection, request, frame, truth);
+    const ColorLayers layers =
+        release_layers(config, sequence, renderer, camera.projection, request, frame, truth);
+    const Image<float> color = denoised_color(config, layers, camera.projection, truth.depth.view(),
+                                              truth.instance.view());
     Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
     if (exposure) {
       const ScopedPhase phase("final pass");
       if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
         *exposure =
             exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
-      const Image<float> linear = final_color(config, sequence, renderer, camera.projection,
-                                              request.track, frame, camera.readout);
+      const Image<float> linear =
+          final_color(config, sequence, renderer, camera.projection, request.track, frame,
+                      camera.readout, layers, truth.depth);
       final =
           develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame, view);
     }
@@ -341,7 +345,7 @@ nlohmann::json recorded_config(const fs::path& out) {
     for (const char* key :
          {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
           "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops", "lens_dirt", "rig_mount",
-          "scenarios", "scale"})  // the defaults hold what releases without them did
+          "scenarios", "scale", "adaptive"})  // the defaults hold what releases without them did
       if (!recorded.contains(key)) recorded[key] = now.at(key);
   }
   return recorded;

@@ -35,7 +35,9 @@ struct DenoiseOptions {
 // The denoised colour (linear RGB) of one camera's frame; an ERP frame wraps around horizontally.
 Image<float> denoise(const ColorLayers& layers, const DenoiseGuide& guide,
                      const DenoiseOptions& options = {});
-// The six faces of a cube frame (render_cube), each denoised on its own, stacked.
-Image<float> denoise_cube(const CubeFrame& cube, const DenoiseOptions& options = {});
+// The six faces of a cube frame's colour with their ground truth (render_cube's), each denoised on
+// its own, stacked.
+Image<float> denoise_cube(const ColorLayers& color, const GroundTruth& truth,
+                          const DenoiseOptions& options = {});
 
 }  // namespace flowscape

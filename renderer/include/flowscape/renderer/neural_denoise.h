@@ -80,8 +80,8 @@ Image<float> neural_denoise(const UNet& unet, const NeuralGuide& guide);
 
 // A cube frame's six faces, each denoised with a border of 32 pixels taken from its neighbours
 // (the nearest face pixel along each border pixel's ray), so the stitched ERP shows no seam; one
-// exposure for the frame.
-Image<float> neural_denoise_cube(const UNet& unet, const CubeFrame& cube);
+// exposure for the frame. `color`: the stacked faces' layers (render_cube's).
+Image<float> neural_denoise_cube(const UNet& unet, const ColorLayers& color);
 // The features the U-Net takes from a frame's colour layers: the raw colour, the albedo, the unit
 // normal (rendered sums normalised).
 struct NeuralFeatures {

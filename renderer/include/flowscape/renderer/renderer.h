@@ -84,6 +84,10 @@ struct RenderOptions {
   // find the sky at the dome's full resolution (not averaged as SkySampler's: larger tables, more
   // cache misses).
   bool full_sky_when_scattered = false;
+  // Where set (the image's size; for render_cube the stacked faces'), only the pixels where it is
+  // non-zero are traced and the others' layers stay zero: adaptive sampling's second pass. A
+  // pixel's samples are the same as in a render of every pixel.
+  ImageView<const std::uint8_t> pixels{};
 };
 
 // A colour frame split the way a denoiser needs it (linear RGB, each averaged over the pixel's
@@ -101,6 +105,10 @@ struct ColorLayers {
 };
 // direct + indirect + specular + other: the raw colour.
 Image<float> raw_color(const ColorLayers& layers);
+// Two renders of a_samples and b_samples per pixel (other seeds) as one render of both's samples:
+// the means weighted by the samples, the normals summed, and the variance of the pooled mean from
+// both renders' second moments (the spread between them included, as one render would see it).
+ColorLayers pooled(ColorLayers a, int a_samples, const ColorLayers& b, int b_samples);
 
 struct RenderStats {
   std::uint64_t rays = 0;  // camera, bounce and shadow rays traced
@@ -161,5 +169,8 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const FramePair& frames
                       const RenderOptions* color_options, FlowMode mode = FlowMode::Wrap360);
 CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& request,
                       const RenderOptions* color_options, FlowMode mode = FlowMode::Wrap360);
+// The colour layers of the six faces alone, stacked (render_cube's).
+ColorLayers cube_color_layers(Renderer& renderer, int face_size, const FramePair& frames,
+                              const RenderOptions& options);
 
 }  // namespace flowscape

@@ -31,13 +31,29 @@ std::vector<double> shutter_times(const Shutter& shutter, int steps);
 ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, const RenderOptions& options,
                            const Readout& readout = {});
+// The same with the frame's own colour `centre` (traced with `options` at the shutter's middle
+// time, as the clean pass is) standing for the middle third of the shutter: each outer third is
+// traced at its middle time with a quarter of the samples (and of those gathering indirect light;
+// at least 1, its own seed), and the three thirds weigh the same. That is the noise of `options`'
+// samples spread over the shutter (1/9 x (2 x 4 + 1) / spp) for half of them traced, in three
+// blur steps (centre_strata).
+ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const RenderOptions& options,
+                           const Readout& readout, const ColorLayers& centre);
 // The depth of each pixel's centre ray averaged over the same times (over the times it meets a
 // surface; +infinity where it never does): a denoising guide that does not cut the blur trails.
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, int steps, const Readout& readout = {});
+// Over the outer thirds' times and the centre's depth `centre` (the clean pass's ground truth).
+Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const Readout& readout,
+                           const Image<float>& centre);
 // The six cube faces over the shutter (render_cube's layout): their layers and, in truth, no
 // instance ids and, with `depth_guide` (the a-trous denoiser's), the shutter-averaged depth.
+// With `centre` (the clean pass's cube: its colour layers and ground-truth depth at the shutter's
+// middle), the outer thirds traced as shutter_layers with a centre does.
 CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter,
-                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide);
+                       const CameraTrack& camera, const RenderOptions& options, bool depth_guide,
+                       const CubeFrame* centre = nullptr);
 
 }  // namespace flowscape

@@ -20,6 +20,10 @@ Actor sliding_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity
 // box_room plus sliding_box(centre, velocity).
 Scene moving_box(const Eigen::Vector3d& centre, const Eigen::Vector3d& velocity);
 
+// A sunlit world: a checkered wall 10 m ahead, a ground plane 1.7 m below the rig, and a green
+// clear-coated box (sliding_box, material 2) driving across.
+Scene sunlit_street();
+
 // A solid 3-D checker of cells `size` wide in the object's frame (it moves with the object), cells
 // centred on multiples of the size: the base albedo and the base times `contrast`. Point sampled
 // (a fixture for tests, not a filtered texture).

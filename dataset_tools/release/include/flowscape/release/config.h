@@ -26,6 +26,11 @@ struct ReleaseConfig {
   // indirect_spp 0: chosen by the denoiser (kDenoisedIndirectSpp when denoised, every sample
   // when not: a converged reference, --spp 1024 --denoise none, gathers on every sample).
   int spp = 8, indirect_spp = 0, max_bounces = 4;
+  // Adaptive sampling (release/adaptive_sampling.h): the share of the pixels (0-1) that take half
+  // of spp where the denoised colour is estimated worst, the others only the first half; 0 (the
+  // default): every pixel spp. Needs spp >= 4 (fewer: uniform). At equal samples 0.25 gains
+  // 0.5-1.5 dB and costs 40 % more colour time (docs/release.md, "Adaptive sampling").
+  double adaptive = 0;
   // The colour's denoiser: "atrous" (renderer/denoise.h), "oidn" (OIDN's U-Net,
   // renderer/neural_denoise.h, of size denoise_model: default or small), or "none": raw.
   std::string denoise = "atrous", denoise_model = "default";

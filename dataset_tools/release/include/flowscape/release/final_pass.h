@@ -36,13 +36,17 @@ Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequenc
                                       const Projection& camera, int view);
 
 // One view's colour over the frame's shutter, denoised (linear, the clean pass's units); with a
-// rolling shutter each line's shutter is centred on its own time.
+// rolling shutter each line's shutter is centred on its own time. The clean pass's layers of the
+// view (`clean`, release_layers) and its ground-truth depth stand for the shutter's middle third
+// (shutter.h): the outer thirds are traced with a quarter of the samples each.
 Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
                          const Projection& camera, const CameraTrack& track, int frame,
-                         const Readout& readout = {});
-// The six cube faces' (stacked), for the flowscape rig.
+                         const Readout& readout, const ColorLayers& clean,
+                         const Image<float>& clean_depth);
+// The six cube faces' (stacked), for the flowscape rig, around the clean pass's cube (its colour
+// layers, release_cube_layers, and ground truth).
 Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
-                              Renderer& renderer, int frame);
+                              Renderer& renderer, int frame, const CubeFrame& clean);
 
 // A view's final colour through the camera, 8-bit sRGB: `lens` says whether it is a real lens
 // (vignetting) or a virtual camera (the ERP, a cube face); `view` seeds its noise apart.

@@ -9,7 +9,7 @@
 
 namespace flowscape {
 
-inline constexpr const char* kGeneratorVersion = "flowscape 0.12";
+inline constexpr const char* kGeneratorVersion = "flowscape 0.13";
 
 // Paths (relative to `out`, sorted) with the sha256 and size of every file the layout gives the
 // sequences `plans` of a release made with `config` (whatever else their folders hold); a missing

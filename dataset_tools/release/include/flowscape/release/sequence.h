@@ -76,16 +76,27 @@ const UNet& release_unet(const ReleaseConfig& config);
 Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
                             const Projection& camera, ImageView<const float> depth,
                             ImageView<const std::uint16_t> instance);
-// The colour of a cube frame's faces as the release's denoiser leaves them (stacked).
-Image<float> denoised_cube_color(const ReleaseConfig& config, const CubeFrame& cube);
+// The colour of a cube frame's faces (stacked layers, and the faces' ground truth for a-trous) as
+// the release's denoiser leaves them.
+Image<float> denoised_cube_color(const ReleaseConfig& config, const ColorLayers& color,
+                                 const GroundTruth& truth);
+// The cube faces' colour layers of a frame as a release renders them (before denoised_cube_color):
+// path traced with color_options (and config.adaptive's adaptive sampling, which denoises with the
+// faces' ground truth `truth`).
+ColorLayers release_cube_layers(const ReleaseConfig& config, const Sequence& sequence,
+                                Renderer& renderer, const GroundTruth& truth, int frame);
 // The colour of one camera's view of a frame as a release renders it without cube faces: path
-// traced with color_options and denoised with the view's ground truth (unless config.denoise is
-// "none").
+// traced with color_options (and config.adaptive's adaptive sampling) and denoised with the view's
+// ground truth (unless config.denoise is "none").
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth);
 // The same as `view` sees it (a rig camera's request: its viewpoint, its rolling shutter).
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+                           Renderer& renderer, const Projection& camera, const TruthRequest& view,
+                           int frame, const GroundTruth& truth);
+// Its colour layers, before denoised_color.
+ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth);
 
