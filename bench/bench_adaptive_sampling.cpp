@@ -34,8 +34,8 @@ ColorLayers oracle(const Setup& s, const RenderLayers& render, const DenoiseLaye
   };
   const ColorLayers half =
       pooled(render(pass(split.half, 11)), split.half, render(pass(split.half, 12)), split.half);
-  const Image<std::uint8_t> chosen =
-      top_pixels(squared_difference(denoised(half), s.reference), s.erp.width, s.erp.height, share);
+  const Image<std::uint8_t> chosen = top_pixels(
+      squared_srgb_difference(denoised(half), s.reference), s.erp.width, s.erp.height, share);
   RenderOptions more = pass(split.more, 13);
   more.pixels = chosen.view();
   return replaced(half, render(more), chosen.view());

@@ -5,23 +5,14 @@
 #include <cmath>
 #include <vector>
 
-#include "flowscape/formats/srgb.h"
+#include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/sequence.h"
 
 namespace flowscape {
 
-// Per pixel, the squared difference of two images in 8-bit sRGB, summed over the channels.
-inline std::vector<double> squared_difference(const Image<float>& a, const Image<float>& b) {
-  const Image<std::uint8_t> x = linear_to_srgb8(a.view()), y = linear_to_srgb8(b.view());
-  std::vector<double> out(std::size_t(a.width) * a.height, 0.0);
-  for (std::size_t i = 0; i < x.data.size(); ++i)
-    out[i / 3] += std::pow(double(x.data[i]) - y.data[i], 2);
-  return out;
-}
-
 inline double psnr(const Image<float>& image, const Image<float>& reference,
                    const GroundTruth& truth) {
-  const std::vector<double> squared = squared_difference(image, reference);
+  const std::vector<double> squared = squared_srgb_difference(image, reference);
   double sum = 0;
   long count = 0;
   for (std::size_t i = 0; i < squared.size(); ++i)

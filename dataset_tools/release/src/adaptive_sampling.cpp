@@ -26,15 +26,6 @@ RenderOptions pass_options(const RenderOptions& budget, int samples, int pass) {
   return options;
 }
 
-std::vector<double> squared_srgb_difference(const Image<float>& a, const Image<float>& b) {
-  std::vector<double> out(a.pixel_count(), 0.0);
-  tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
-    for (std::size_t c = 3 * i; c < 3 * i + 3; ++c)
-      out[i] += std::pow(double(linear_to_srgb8(a.data[c])) - linear_to_srgb8(b.data[c]), 2);
-  });
-  return out;
-}
-
 // The mean over each pixel's 3 x 3 neighbours inside the image.
 std::vector<double> box3(const std::vector<double>& values, int width, int height) {
   std::vector<double> out(values.size());
@@ -51,6 +42,15 @@ std::vector<double> box3(const std::vector<double>& values, int width, int heigh
 }
 
 }  // namespace
+
+std::vector<double> squared_srgb_difference(const Image<float>& a, const Image<float>& b) {
+  std::vector<double> out(a.pixel_count(), 0.0);
+  tbb::parallel_for(std::size_t(0), out.size(), [&](std::size_t i) {
+    for (std::size_t c = 3 * i; c < 3 * i + 3; ++c)
+      out[i] += std::pow(double(linear_to_srgb8(a.data[c])) - linear_to_srgb8(b.data[c]), 2);
+  });
+  return out;
+}
 
 SampleSplit sample_split(int samples_per_pixel, double share) {
   const int half = share > 0 ? samples_per_pixel / 4 : 0;

@@ -36,6 +36,8 @@ using DenoiseLayers = std::function<Image<float>(const ColorLayers& layers)>;
 ColorLayers adaptive_color_layers(const RenderLayers& render, const DenoiseLayers& denoise,
                                   const RenderOptions& options, double share);
 
+// Per pixel, the squared difference of `a` and `b` in 8-bit sRGB, summed over the channels.
+std::vector<double> squared_srgb_difference(const Image<float>& a, const Image<float>& b);
 // The estimate of where a denoised frame is wrong: per pixel, the squared difference of `a` and
 // `b` in 8-bit sRGB (summed over the channels), averaged over its 3 x 3 neighbours in the image.
 std::vector<double> disagreement(const Image<float>& a, const Image<float>& b);
