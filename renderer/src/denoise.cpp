@@ -177,8 +177,6 @@ Image<float> denoise(const ColorLayers& layers, const DenoiseGuide& guide,
   return color;
 }
 
-namespace {}  // namespace
-
 Image<float> denoise_cube(const ColorLayers& c, const GroundTruth& truth,
                           const DenoiseOptions& options) {
   const int N = c.direct.width;

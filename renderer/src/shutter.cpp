@@ -61,6 +61,12 @@ void for_each_step(const Shutter& shutter, const RenderOptions& options, Step&& 
   }
 }
 
+// The middle times of the shutter's first and last thirds.
+std::array<double, 2> outer_third_times(const Shutter& shutter) {
+  const double sixth = (shutter.close - shutter.open) / 6;
+  return {shutter.open + sixth, shutter.close - sixth};
+}
+
 // Calls step(time, its options) for the outer thirds of the shutter, with a quarter of `options`'
 // samples each (shutter_layers with a centre).
 template <class Step>
@@ -69,10 +75,10 @@ void for_each_outer_third(const Shutter& shutter, const RenderOptions& options, 
   outer.samples_per_pixel = std::max(1, options.samples_per_pixel / 4);
   if (options.indirect_samples > 0)
     outer.indirect_samples = std::max(1, options.indirect_samples / 4);
-  const double sixth = (shutter.close - shutter.open) / 6;
+  const std::array<double, 2> times = outer_third_times(shutter);
   for (int k = 0; k < 2; ++k) {
     outer.seed = derived_seed(options.seed, std::uint64_t(k), 8);
-    step(k == 0 ? shutter.open + sixth : shutter.close - sixth, outer);
+    step(times[std::size_t(k)], outer);
   }
 }
 
@@ -142,21 +148,12 @@ ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, con
 }
 
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, int steps, const Readout& readout) {
-  DepthSum depth;
-  for (double time : shutter_times(shutter, steps))
-    depth.add(step_depth(renderer, projection, time, camera, readout));
-  return depth.mean();
-}
-
-Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, const Readout& readout,
                            const Image<float>& centre) {
   DepthSum depth;
   depth.add(centre);
-  for_each_outer_third(shutter, {}, [&](double time, const RenderOptions&) {
+  for (double time : outer_third_times(shutter))
     depth.add(step_depth(renderer, projection, time, camera, readout));
-  });
   return depth.mean();
 }
 
@@ -166,7 +163,7 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
   // step by step, every face at each (the scene posed once per step)
   std::array<ColorLayers, 6> faces;
   std::array<DepthSum, 6> depths;
-  const auto step = [&](double time, const RenderOptions& step, float weight) {
+  const auto trace_step = [&](double time, const RenderOptions& step, float weight) {
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
@@ -180,10 +177,10 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
       if (depth_guide) depths[int(face)].add(face_of(centre->truth.depth, face));
     }
     for_each_outer_third(shutter, options, [&](double time, const RenderOptions& outer) {
-      step(time, outer, 1.0f / 3);
+      trace_step(time, outer, 1.0f / 3);
     });
   } else {
-    for_each_step(shutter, options, step);
+    for_each_step(shutter, options, trace_step);
   }
   CubeFrame cube;
   for (Face face : kFaces) {

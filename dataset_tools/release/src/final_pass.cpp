@@ -125,7 +125,7 @@ nlohmann::json final_json(const ReleaseConfig& config, const Sequence& sequence,
     per_frame.push_back(
         {{"adapted_key", e.adapted_key}, {"integration", e.integration}, {"gain", e.gain}});
   return {{"shutter_angle", config.shutter_angle},
-          {"shutter_steps", 3},  // the clean frame in the middle third (shutter.h)
+          {"shutter_steps", kCentredShutterSteps},
           {"sensor",
            {{"f_number", s.f_number},
             {"pixel_pitch_um", s.pixel_pitch * 1e6},

@@ -35,16 +35,15 @@ ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, con
 // time, as the clean pass is) standing for the middle third of the shutter: each outer third is
 // traced at its middle time with a quarter of the samples (and of those gathering indirect light;
 // at least 1, its own seed), and the three thirds weigh the same. That is the noise of `options`'
-// samples spread over the shutter (1/9 x (2 x 4 + 1) / spp) for half of them traced, in three
-// blur steps (centre_strata).
+// samples spread over the shutter (1/9 x (2 x 4 + 1) / spp) for half of them traced, in
+// kCentredShutterSteps blur steps.
 ColorLayers shutter_layers(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, const RenderOptions& options,
                            const Readout& readout, const ColorLayers& centre);
-// The depth of each pixel's centre ray averaged over the same times (over the times it meets a
-// surface; +infinity where it never does): a denoising guide that does not cut the blur trails.
-Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
-                           const CameraTrack& camera, int steps, const Readout& readout = {});
-// Over the outer thirds' times and the centre's depth `centre` (the clean pass's ground truth).
+inline constexpr int kCentredShutterSteps = 3;
+// The depth of each pixel's centre ray averaged over the same times, the centre's `centre` (the
+// clean pass's ground truth) with the outer thirds' (over the times it meets a surface; +infinity
+// where it never does): a denoising guide that does not cut the blur trails.
 Image<float> shutter_depth(Renderer& renderer, const Projection& projection, const Shutter& shutter,
                            const CameraTrack& camera, const Readout& readout,
                            const Image<float>& centre);
