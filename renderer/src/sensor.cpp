@@ -25,20 +25,31 @@ void require(bool ok, const char* what) {
   if (!ok) throw std::invalid_argument(std::string("sensor: ") + what);
 }
 
-// A standard normal number (Box-Muller) and a Poisson one (Knuth's product below a mean of 30,
-// the normal approximation above, where it is within a fraction of a percent).
-double normal(Random& random) {
+// Two independent standard normal numbers (Box-Muller's pair), and a Poisson number by Knuth's
+// product (for means up to 30; noisy_electrons takes the normal approximation above, within a
+// fraction of a percent there).
+std::pair<double, double> normal_pair(Random& random) {
   const double u = std::max(random.uniform(), 1e-300), v = random.uniform();
-  return std::sqrt(-2 * std::log(u)) * std::cos(2 * kPi * v);
+  const double radius = std::sqrt(-2 * std::log(u));
+  const SinCos angle = sin_cos(2 * kPi * v);
+  return {radius * angle.cos, radius * angle.sin};
 }
 double poisson(Random& random, double mean) {
-  if (mean <= 0) return 0;
-  if (mean > 30) return std::max(0.0, std::round(mean + std::sqrt(mean) * normal(random)));
   const double limit = std::exp(-mean);
   double product = random.uniform();
   int count = 0;
   while (product > limit) product *= random.uniform(), ++count;
   return count;
+}
+
+// The electrons a pixel counts from a mean of `mean`: Poisson shot noise plus Gaussian read noise
+// (one Box-Muller pair serves both where the shot noise is normal).
+double noisy_electrons(Random& random, double mean, double read_noise) {
+  const auto [shot, read] = normal_pair(random);
+  if (mean <= 0) return read_noise * read;
+  if (mean > 30)
+    return std::max(0.0, std::round(mean + std::sqrt(mean) * shot)) + read_noise * read;
+  return poisson(random, mean) + read_noise * read;
 }
 
 // The pixel's solid angle over the image centre's, times cos(theta) for a rectilinear lens (the
@@ -84,6 +95,36 @@ void shift_colours(const cv::Mat& image, double k) {
     channels[c] = moved;
   }
   cv::merge(channels, image);
+}
+
+// A Gaussian blur of standard deviation `sigma` (pixels), wide ones on a coarser level of a
+// Gaussian pyramid: halved (pyrDown) while at least 4 pixels of sigma are left there, blurred by
+// what is left of sigma after the pyramid's own spread, and doubled back (pyrUp). pyrDown's and
+// pyrUp's 5-tap kernels each add a variance of 1 pixel^2 of their finer level and keep a point's
+// centre of mass, so the blur is the same wherever a light sits on the coarse grid (a moving
+// lamp's halo moves smoothly). Within 1 % of the closed form (test), for an eighth of the
+// filter's taps at sigma 8 and a five-hundredth at 32.
+cv::Mat gaussian_blur(const cv::Mat& image, double sigma) {
+  constexpr double kCoarseSigma = 4;
+  std::vector<cv::Mat> levels{image};
+  double spread = 0;  // the variance the pyramid adds, in pixels^2 of `image`
+  for (double scale = 1; sigma / (2 * scale) >= kCoarseSigma &&
+                         std::min(levels.back().cols, levels.back().rows) >= 16;
+       scale *= 2) {
+    spread += 2 * scale * scale;
+    levels.emplace_back();
+    cv::pyrDown(levels[levels.size() - 2], levels.back());
+  }
+  const double coarse_sigma = std::sqrt(sigma * sigma - spread) / std::exp2(levels.size() - 1);
+  cv::Mat blurred;
+  cv::GaussianBlur(levels.back(), blurred, cv::Size(0, 0), coarse_sigma, coarse_sigma,
+                   cv::BORDER_REFLECT);
+  for (std::size_t level = levels.size() - 1; level-- > 0;) {
+    cv::Mat finer;
+    cv::pyrUp(blurred, finer, levels[level].size());
+    blurred = finer;
+  }
+  return blurred;
 }
 
 // The RGGB filter's channel at a pixel.
@@ -168,12 +209,9 @@ Image<float> lens_image(ImageView<const float> nits, const Projection& camera,
   const cv::Mat image(out.height, out.width, CV_32FC3, out.data.data());
   if (s.chromatic_aberration != 0) shift_colours(image, s.chromatic_aberration);
   if (s.glare <= 0) return out;
-  cv::Mat spread = cv::Mat::zeros(image.size(), CV_32FC3), blurred;
-  for (double sigma : kGlareSigmas) {
-    cv::GaussianBlur(image, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT);
-    spread += blurred / 3.0;
-  }
-  cv::addWeighted(image, 1 - s.glare, spread, s.glare, 0, image);
+  cv::Mat spread = cv::Mat::zeros(image.size(), CV_32FC3);
+  for (double sigma : kGlareSigmas) spread += gaussian_blur(image, sigma);
+  cv::addWeighted(image, 1 - s.glare, spread, s.glare / 3, 0, image);
   return out;
 }
 
@@ -188,8 +226,8 @@ Image<float> sensor_raw(ImageView<const float> sensor_nits, const SensorModel& s
       for (int k = 0; k < raw.channels; ++k) {
         const int c = s.bayer ? bayer_channel(x, y) : k;
         const double mean = std::max(0.0, double(sensor_nits.pixel(x, y)[c])) * electrons_per_nit;
-        double electrons = s.noise ? poisson(random, mean) + s.read_noise * normal(random) : mean;
-        electrons = std::clamp(electrons, 0.0, s.full_well);
+        const double electrons = std::clamp(
+            s.noise ? noisy_electrons(random, mean, s.read_noise) : mean, 0.0, s.full_well);
         raw.pixel(x, y)[k] = float(std::min(1.0, electrons * to_raw));
       }
     }

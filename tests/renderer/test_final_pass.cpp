@@ -277,6 +277,29 @@ TEST_CASE("glare spreads a share of a bright light round it and keeps its energy
   CHECK(seen.pixel(128, 138)[0] > 0);  // a halo ten pixels away
 }
 
+TEST_CASE("glare's point-spread is the closed-form mix of three Gaussians of 2, 8 and 32 pixels") {
+  SensorModel sensor;
+  sensor.vignetting = false;
+  constexpr int kSize = 512, kCentre = 256;
+  constexpr double kPower = 1e5;
+  Image<float> lamp(kSize, kSize, 3, 0.0f);
+  for (int c = 0; c < 3; ++c) lamp.pixel(kCentre, kCentre)[c] = float(kPower);
+  const Image<float> seen = lens_image(lamp.view(), Projection::pinhole(kSize, kSize, 60), sensor);
+  const auto spread = [&](double d) {  // the glare d pixels from the lamp
+    double sum = 0;
+    for (double sigma : {2.0, 8.0, 32.0})
+      sum += std::exp(-d * d / (2 * sigma * sigma)) / (2 * kPi * sigma * sigma) / 3;
+    return sensor.glare * kPower * sum;
+  };
+  CHECK(seen.pixel(kCentre, kCentre)[1] - (1 - sensor.glare) * kPower ==
+        Approx(spread(0)).epsilon(0.02));
+  for (int d : {3, 10, 24, 50, 100}) {
+    INFO(d << " pixels away");
+    CHECK(seen.pixel(kCentre + d, kCentre)[1] == Approx(spread(d)).epsilon(0.02));
+    CHECK(seen.pixel(kCentre, kCentre - d)[0] == Approx(spread(d)).epsilon(0.02));
+  }
+}
+
 TEST_CASE("lateral chromatic aberration moves red out and blue in by their share of the radius") {
   SensorModel sensor;
   sensor.vignetting = false, sensor.glare = 0, sensor.chromatic_aberration = 0.05;

@@ -9,7 +9,7 @@
 
 namespace flowscape {
 
-inline constexpr const char* kGeneratorVersion = "flowscape 0.13";
+inline constexpr const char* kGeneratorVersion = "flowscape 0.14";
 
 // Paths (relative to `out`, sorted) with the sha256 and size of every file the layout gives the
 // sequences `plans` of a release made with `config` (whatever else their folders hold); a missing
