@@ -19,6 +19,7 @@
 #include "flowscape/release/scenario.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/scenes/model_io.h"
+#include "tracing_cli.h"
 
 using namespace flowscape;
 
@@ -281,9 +282,11 @@ int main(int argc, char** argv) {
                      "--gltf its scene, as the release rendered it");
   from_release->excludes(app.get_option("--scenario"));
   finish_options(app, "city_preview");
+  version_with_kernels(app, "city_preview");
   if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
-    for (const std::string& name : o.weathers) weather_preset(name);  // fail before rendering
+    embree_config();  // fail before rendering
+    for (const std::string& name : o.weathers) weather_preset(name);
     for (const std::string& time : o.times_of_day) validate_time_of_day(time);
     for (const std::string& sky : o.skies) check_sky_resolution(sky, o.height / kPi);
     o.models = parse_models(models);

@@ -20,6 +20,7 @@
 #include "flowscape/release/statistics.h"
 #include "flowscape/release/writer.h"
 #include "flowscape/renderer/calibration_file.h"
+#include "tracing_cli.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;
@@ -275,8 +276,10 @@ int main(int argc, char** argv) {
                "that the release should not (temporary files, foreign files, files missing or "
                "changed since manifest.json); write nothing");
   finish_options(app, "gen_flowscape");
+  version_with_kernels(app, "gen_flowscape");
   if (const auto status = parse_options(app, argc, argv)) return *status;
   try {
+    embree_config();  // a bad FLOWSCAPE_EMBREE_CONFIG fails before anything is written
     if (!weathers.empty()) given["weathers"] = comma_list(weathers);
     if (!times.empty()) given["times_of_day"] = comma_list(times);
     if (!skies.empty()) given["skies"] = comma_list(skies);

@@ -14,6 +14,7 @@ optional=(
   clang-format clang libclang-rt-14-dev assimp-testmodels  # formatting, the fuzzers, test models
   slurm-wlm munge                                           # the Slurm path's test
   catch2 pybind11-dev                                       # the tests, the plugin's extension
+  valgrind                                                  # the memcheck test
   python3-dev python3-numpy python3-pytest python3-torch python3-pip python3-setuptools python3-venv
   python3-pil python3-openimageio
   libdnnl-dev ocl-icd-opencl-dev opencl-c-headers           # the U-Net denoiser (oneDNN)

@@ -12,7 +12,7 @@ name by example are made here: dataset folders (CUBE, frames/, flows/, seq/, flo
 release, my_rig.json from docs/cameras.md's example, camchain.yaml (docs/rigs/kalibr_stereo.yaml) and
 opencv.yml as OpenCV writes it; a shell prompt (`machine-a$`) is dropped, absolute example folders (/shared,
 /scratch/$USER) are made under the scratch folder and `[--option]` means the option is left out.
-What cannot run in CI is listed with the reason (NOT_RUN). `python3` is Debian's (/usr/bin first
+What cannot run in CI is listed with the reason (NOT_RUN); a VAR=value prefix stays in front of each run. `python3` is Debian's (/usr/bin first
 on the PATH). Usage: docs_commands_test.py REPO_ROOT BUILD_DIR"""
 import glob
 import os
@@ -124,8 +124,15 @@ def run(words, scratch):
     return done.returncode, (done.stderr or done.stdout).strip().splitlines()[-1:]
 
 
-def not_run(part):
+def split_environment(part):
+    """VAR=value words before the program, and the command's words."""
     words = shlex.split(part)
+    at = next(k for k, word in enumerate(words) if "=" not in word or word.startswith("-"))
+    return words[:at], words[at:]
+
+
+def not_run(part):
+    words = split_environment(part)[1]
     program = " ".join([os.path.basename(words[0])] + words[1:2])
     for start, reason in NOT_RUN.items():
         if program.startswith(start) or os.path.basename(words[0]) == start:
@@ -140,26 +147,29 @@ def runs_of(line, scratch):
         if reason:
             print(f"not run ({reason}): {part.strip()}")
             continue
-        words = shlex.split(part)
-        program = os.path.basename(words[0])
-        if program == "gen_flowscape" and "--demo" not in words:
-            out = words[words.index("--out") + 1].rstrip("/") if "--out" in words else "dataset"
-            # the README previews map00_seq05; small/ is split and trained on
-            sequences = {"dataset": "6", "small": "4"}.get(out, "2")
-            if "--scenario" in words:  # the scenarios are the sequences
-                sized = tiny(words)
-                at = sized.index("--maps")
-                runs += [words + ["--check"], sized[:at] + sized[at + 2:]]
-            else:
-                runs += [words + ["--check"], tiny(words) + ["--sequences-per-map", sequences]]
-        elif program == "city_preview":
-            one_map = ["--maps", "0"] if "--gltf" in words and "--maps" not in words else []
-            runs.append(tiny(words, PREVIEW_OPTIONS, TINY_PREVIEW) + one_map)
-        elif "--steps" in words:
-            runs.append(tiny(words, {"--steps"}, ["--steps", "20"]))
-        else:
-            runs.append(words)
+        environment, words = split_environment(part)  # kept in front of every run
+        runs += [environment + scaled for scaled in scaled_runs(words)]
     return runs
+
+
+def scaled_runs(words):
+    """A command's runs by the scaling rule (module docstring)."""
+    program = os.path.basename(words[0])
+    if program == "gen_flowscape" and "--demo" not in words:
+        out = words[words.index("--out") + 1].rstrip("/") if "--out" in words else "dataset"
+        # the README previews map00_seq05; small/ is split and trained on
+        sequences = {"dataset": "6", "small": "4"}.get(out, "2")
+        if "--scenario" in words:  # the scenarios are the sequences
+            sized = tiny(words)
+            at = sized.index("--maps")
+            return [words + ["--check"], sized[:at] + sized[at + 2:]]
+        return [words + ["--check"], tiny(words) + ["--sequences-per-map", sequences]]
+    if program == "city_preview":
+        one_map = ["--maps", "0"] if "--gltf" in words and "--maps" not in words else []
+        return [tiny(words, PREVIEW_OPTIONS, TINY_PREVIEW) + one_map]
+    if "--steps" in words:
+        return [tiny(words, {"--steps"}, ["--steps", "20"])]
+    return [words]
 
 
 def main():

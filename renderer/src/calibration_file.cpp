@@ -188,6 +188,8 @@ Pose chained_transform(const cv::FileNode& node) {
   Pose pose = Pose::Identity();
   pose.linear() = Eigen::Quaterniond(r).normalized().toRotationMatrix();
   pose.translation() = m.topRightCorner<3, 1>();
+  require(within_world(pose.translation()),
+          "\"T_cn_cnm1\"'s translation must lie within 1,000 km (metres)");
   return pose;
 }
 

@@ -2,11 +2,22 @@
 // Internal: stacking the cube's faces (geometry.h's N x 6N layout) and cutting them out, for
 // render_cube, the denoiser and the final pass's shutter_cube.
 #include <algorithm>
+#include <string>
 
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
+
+// render() for one face: a RayError of it names the face as its camera.
+template <class Render>
+auto on_face(Face face, Render&& render) {
+  try {
+    return render();
+  } catch (const RayError& e) {
+    throw e.of_camera("cube " + std::string(face_name(face)));
+  }
+}
 
 // Puts `image` at `face` of `cube`, allocating the stacked image on the first face.
 template <class T>

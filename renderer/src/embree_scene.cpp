@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
 #include "flowscape/core/profile.h"
+#include "flowscape/renderer/ray_kernels.h"
 #include "flowscape/scenes/skinning.h"
 
 namespace flowscape {
@@ -96,6 +98,9 @@ void require_valid_mesh(const Mesh& mesh, const std::string& name) {
   require_per_vertex(mesh.normals.size(), mesh, "normals", name);
   require_per_vertex(mesh.uvs.size(), mesh, "uvs", name);
   require_per_vertex(mesh.tangents.size(), mesh, "tangents", name);
+  for (const Eigen::Vector3f& v : mesh.vertices)
+    if (!within_world(v.cast<double>()))
+      throw std::invalid_argument(name + ": a vertex is not finite or lies beyond 1,000 km");
   for (const Eigen::Vector3i& t : mesh.triangles)
     for (int c = 0; c < 3; ++c)
       if (t[c] < 0 || std::size_t(t[c]) >= mesh.vertices.size())
@@ -107,24 +112,51 @@ std::string mesh_name(const MeshRef& ref) {
                        : "actor " + std::to_string(ref.actor) + " part " + std::to_string(ref.part);
 }
 
-RTCRay make_ray(const Vec3& origin, const Vec3& direction, float tfar) {
+// Embree's kernels take coordinates below FLT_LARGE (1.844e18, its ray.h) and no NaN.
+bool embree_takes(float value) { return std::abs(value) < 1.8e18f; }
+
+std::string vector_text(const Vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.9g, %.9g, %.9g)", v.x(), v.y(), v.z());
+  return text;
+}
+
+void require_traceable(const BundleRay& ray, int lane) {
+  const Vec3 &o = ray.origin, &d = ray.direction;
+  bool takes = !std::isnan(ray.far) && ray.far >= 0;
+  for (int c = 0; c < 3; ++c)
+    takes = takes && embree_takes(float(o[c])) && embree_takes(float(d[c]));
+  if (!takes)
+    throw InvalidRay(lane, "a ray from " + vector_text(o) + " along " + vector_text(d) +
+                               " cannot be traced (Embree takes finite coordinates below 1.8e18)");
+}
+
+RTCRay make_ray(const BundleRay& from) {
+  require_traceable(from, 0);
   RTCRay ray{};
+  const Vec3 &origin = from.origin, &direction = from.direction;
   ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
   ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y());
   ray.dir_z = float(direction.z());
-  ray.tnear = 0, ray.tfar = tfar, ray.mask = kSceneMask;
+  ray.tnear = 0, ray.tfar = from.far, ray.mask = kSceneMask;
   return ray;
 }
 
 // Copies the rays of a bundle into an Embree packet (RTCRay16 or the ray part of RTCRayHit16).
+// Every lane is defined: Embree may read lanes the valid mask leaves out (without native 16-wide
+// kernels it traces the packet as a stream, whose lanes count as active where tnear <= tfar), so
+// those hold an empty ray (tnear > tfar, mask 0) that nothing can hit.
 void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& packet, int* valid) {
   for (int i = 0; i < kBundleSize; ++i) {
-    valid[i] = i < count && rays[i].active ? -1 : 0;
-    if (!valid[i]) continue;
-    const Vec3 &o = rays[i].origin, &d = rays[i].direction;
+    const bool active = i < count && rays[i].active;
+    if (active) require_traceable(rays[i], i);
+    const Vec3 o = active ? rays[i].origin : Vec3::Zero();
+    const Vec3 d = active ? rays[i].direction : Vec3::UnitX();
+    valid[i] = active ? -1 : 0;
     packet.org_x[i] = float(o.x()), packet.org_y[i] = float(o.y()), packet.org_z[i] = float(o.z());
     packet.dir_x[i] = float(d.x()), packet.dir_y[i] = float(d.y()), packet.dir_z[i] = float(d.z());
-    packet.tnear[i] = 0, packet.tfar[i] = rays[i].far, packet.mask[i] = mask;
+    packet.tnear[i] = active ? 0.0f : 1.0f, packet.tfar[i] = active ? rays[i].far : 0.0f;
+    packet.mask[i] = active ? mask : 0u;
     packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
   }
 }
@@ -136,6 +168,7 @@ void intersect_packet(RTCScene scene, const BundleRay* rays, int count, unsigned
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kBundleSize];
   fill_packet(rays, count, mask, packet.ray, valid);
+  packet.hit = RTCHit16{};  // outputs, but handed over whole like the rays
   std::fill_n(packet.hit.geomID, kBundleSize, RTC_INVALID_GEOMETRY_ID);
   std::fill_n(packet.hit.instID[0], kBundleSize, RTC_INVALID_GEOMETRY_ID);
   rtcIntersect16(valid, scene, &context, &packet);
@@ -200,8 +233,11 @@ Vec3 point_on(const Mesh& mesh, unsigned triangle, double u, double v) {
 
 EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     : scene_(scene), coverage_(coverage) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("cannot create an Embree device");
+  const std::string config = embree_config();
+  device_ = rtcNewDevice(config.c_str());
+  if (!device_)
+    throw std::runtime_error(std::string("cannot create an Embree device with ") +
+                             kEmbreeConfigVariable + "=\"" + config + "\"");
   meshes_.push_back({&scene.world, &scene.world});
   for (std::size_t a = 0; a < scene.actors.size(); ++a)
     for (std::size_t p = 0; p < scene.actors[a].parts.size(); ++p) {
@@ -387,7 +423,7 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
-  rh.ray = make_ray(origin, direction, kInfinity);
+  rh.ray = make_ray({origin, direction, true, kInfinity});
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(current_->top, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
@@ -408,7 +444,7 @@ bool EmbreeScene::occluded(int target, const Vec3& origin, const Vec3& direction
 bool EmbreeScene::occluded(int target, const BundleRay& bundle_ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray = make_ray(bundle_ray.origin, bundle_ray.direction, bundle_ray.far);
+  RTCRay ray = make_ray(bundle_ray);
   rtcOccluded1(scene_at(target), &context, &ray);
   return ray.tfar < 0;
 }

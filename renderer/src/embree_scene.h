@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/scene.h"
 #include "flowscape/stitcher/geometry.h"
 
@@ -42,6 +44,36 @@ struct BundleRay {
   float far = std::numeric_limits<float>::infinity();  // how far it looks
 };
 constexpr int kBundleSize = 16;  // Embree's widest packet
+
+// A ray Embree must not be given: a coordinate NaN, infinite or beyond what its kernels take
+// (they assert |x| < 1.8e18). Thrown instead of tracing it; `lane`: its place in the bundle (0
+// for a single ray), so that the caller can name the pixel.
+struct InvalidRay : std::runtime_error {
+  InvalidRay(int lane, const std::string& problem) : std::runtime_error(problem), lane(lane) {}
+  int lane;
+};
+
+// Runs `trace` for lane `lane` of a bundle traced ray by ray: its InvalidRay names that lane.
+template <class Trace>
+void naming_lane(int lane, Trace&& trace) {
+  try {
+    trace();
+  } catch (const InvalidRay& e) {
+    throw InvalidRay(lane, e.what());
+  }
+}
+
+// Runs `trace`; a ray of it that Embree could not take becomes a RayError at the pixel
+// pixel_of(lane) gives (an {x, y} pair).
+template <class Trace, class PixelOf>
+void naming_pixels(Trace&& trace, PixelOf&& pixel_of) {
+  try {
+    trace();
+  } catch (const InvalidRay& e) {
+    const auto [x, y] = pixel_of(e.lane);
+    throw RayError(x, y, e.what());
+  }
+}
 
 // How far a visibility ray to a point `distance` away looks: a fraction short of it, so that the
 // point's own surface does not hide it (float hit points are good to about 1e-6 of their

@@ -456,7 +456,11 @@ struct PixelGroupTracer {
       for (int x = x0; x < x1; ++x)
         for (int i = 0; i < per_pixel; ++i, ++lane)
           start(*group[x - x0], first + i, lane, samplers, paths, looks);
-      trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays);
+      naming_pixels(
+          [&] { trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays); },
+          [&](int of) {
+            return std::pair{x0 + of / per_pixel, y};
+          });
       lane = 0;
       for (int x = x0; x < x1; ++x)
         for (int i = 0; i < per_pixel; ++i) group[x - x0]->add(paths[lane++]);

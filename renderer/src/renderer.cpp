@@ -211,18 +211,22 @@ BundleRay truth_ray(const TruthContext& c, Vec2 pixel) {
 void intersect_all(const TruthContext& c, const BundleRay* rays, int count, Hit* hits) {
   if (!c.request.single_rays) return c.scene.intersect_scene(rays, count, hits);
   for (int i = 0; i < count; ++i)
-    hits[i] = rays[i].active ? c.scene.intersect(rays[i].origin, rays[i].direction) : Hit{};
+    naming_lane(i, [&] {
+      hits[i] = rays[i].active ? c.scene.intersect(rays[i].origin, rays[i].direction) : Hit{};
+    });
 }
 
 void occluded_all(const TruthContext& c, int target, const BundleRay* rays, int count,
                   bool* blocked) {
   if (!c.request.single_rays) return c.scene.occluded(target, rays, count, blocked);
-  for (int i = 0; i < count; ++i) blocked[i] = rays[i].active && c.scene.occluded(target, rays[i]);
+  for (int i = 0; i < count; ++i)
+    naming_lane(i, [&] { blocked[i] = rays[i].active && c.scene.occluded(target, rays[i]); });
 }
 
 // Every asked-for kind of up to kBundleSize pixels, into `out`: their camera rays traced together,
 // then each target's visibility rays together.
-void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, GroundTruth& out) {
+void trace_bundle_truth(const TruthContext& c, const TruthPixel* pixels, int count,
+                        GroundTruth& out) {
   BundleRay rays[kBundleSize];
   Hit hits[kBundleSize];
   for (int i = 0; i < count; ++i) rays[i] = truth_ray(c, pixels[i].centre);
@@ -264,6 +268,13 @@ void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, Gro
       put_normals(c.scene, c.images, c.projection, c.request, c.camera, hit, rays[i].direction,
                   centre, out, x, y);
   }
+}
+
+void trace_truth(const TruthContext& c, const TruthPixel* pixels, int count, GroundTruth& out) {
+  naming_pixels([&] { trace_bundle_truth(c, pixels, count, out); },
+                [&](int lane) {
+                  return std::pair{pixels[lane].x, pixels[lane].y};
+                });
 }
 
 // A row's pixels, kBundleSize neighbours at a time.
@@ -341,7 +352,7 @@ CubeFrame render_cube(Renderer& renderer, int face_size, const TruthRequest& req
     const Projection projection = Projection::cube_face(face, face_size);
     const GroundTruth gt = [&] {
       const ScopedPhase phase("cube faces: ground truth");
-      return renderer.ground_truth(projection, request, mode);
+      return on_face(face, [&] { return renderer.ground_truth(projection, request, mode); });
     }();
     put_face(all.flow, face, gt.flow), put_face(all.semantic, face, gt.semantic);
     put_face(all.instance, face, gt.instance), put_face(all.depth, face, gt.depth);
@@ -368,8 +379,10 @@ ColorLayers cube_color_layers(Renderer& renderer, int face_size, const FramePair
   for (Face face : kFaces) {
     RenderOptions face_options = options;
     if (mask.data) face_options.pixels = face_view(mask, face);
-    put_face(color, face,
-             renderer.color_layers(Projection::cube_face(face, face_size), frames, face_options));
+    put_face(color, face, on_face(face, [&] {
+               return renderer.color_layers(Projection::cube_face(face, face_size), frames,
+                                            face_options);
+             }));
   }
   return color;
 }

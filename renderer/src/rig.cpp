@@ -94,6 +94,7 @@ RigCamera camera_from_json(const nlohmann::json& c) {
           what + "mount needs a rotation: \"yaw_pitch_roll_degrees\" or \"camera_to_rig\"");
   RigCamera camera{name, {}, Vec3::Zero()};
   camera.position = vector3(mount.at("position"), what + "position");
+  require(within_world(camera.position), what + "position must lie within 1,000 km (metres)");
   Mat3 rotation = look(0, 0, 0);
   if (mount.contains("camera_to_rig"))
     rotation = rotation_rows(mount.at("camera_to_rig"), what + "camera_to_rig");

@@ -175,7 +175,12 @@ void test_visibility(EmbreeScene& scene, const RollingContext& c, int k,
         direction = scene.world_point(subject.point, t) - origin;
         distance = direction.norm(), direction /= distance;
       }
-      valid.data[i] = !scene.occluded(EmbreeScene::kNow, origin, direction, distance);
+      const int width = c.projection.width;
+      naming_pixels(
+          [&] { valid.data[i] = !scene.occluded(EmbreeScene::kNow, origin, direction, distance); },
+          [&](int) {
+            return std::pair{int(i % width), int(i / width)};
+          });
     });
   }
 }

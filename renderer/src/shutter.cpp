@@ -167,8 +167,10 @@ CubeFrame shutter_cube(Renderer& renderer, int face_size, const Shutter& shutter
     for (Face face : kFaces) {
       const Projection projection = Projection::cube_face(face, face_size);
       const int f = int(face);
-      add_step(faces[f], step_layers(renderer, projection, time, camera, {}, step), weight);
-      if (depth_guide) depths[f].add(step_depth(renderer, projection, time, camera, {}));
+      on_face(face, [&] {
+        add_step(faces[f], step_layers(renderer, projection, time, camera, {}, step), weight);
+        if (depth_guide) depths[f].add(step_depth(renderer, projection, time, camera, {}));
+      });
     }
   };
   if (centre) {

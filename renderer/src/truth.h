@@ -49,7 +49,8 @@ void parallel_pixels(const PixelWindow& window, Visit&& visit) {
   const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
   tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
     for (int y = block.rows().begin(); y < block.rows().end(); ++y)
-      for (int x = block.cols().begin(); x < block.cols().end(); ++x) visit(x, y);
+      for (int x = block.cols().begin(); x < block.cols().end(); ++x)
+        naming_pixels([&] { visit(x, y); }, [&](int) { return std::pair{x, y}; });
   });
 }
 

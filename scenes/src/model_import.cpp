@@ -406,6 +406,8 @@ Mesh load_world(const WorldModel& world, Scene& scene) {
   for (Eigen::Vector3f& v : mesh.vertices) {
     v *= float(world.metres_per_unit);
     if (!v.allFinite()) fail(path, "a vertex is not finite");
+    if (!within_world(v.cast<double>()))
+      fail(path, "a vertex lies beyond 1,000 km of the origin (are the world's units right?)");
   }
   return mesh;
 }

@@ -113,6 +113,12 @@ std::vector<double> numbers_of(const std::string& line) {
   return numbers;
 }
 
+// A pose file's camera must lie where Embree can trace from (kFarthestPosition).
+void require_within_world(const Pose& pose, int line) {
+  require(within_world(pose.translation()),
+          line_error(line, "its position lies beyond 1,000 km of the origin"));
+}
+
 std::vector<TimedPose> tum_or_kitti(std::istream& in, PoseFormat format, double rate) {
   std::vector<TimedPose> poses;
   std::string text;
@@ -122,6 +128,7 @@ std::vector<TimedPose> tum_or_kitti(std::istream& in, PoseFormat format, double 
     if (format == PoseFormat::Tum) {
       require(v.size() == 8, line_error(line, "a TUM pose is: time tx ty tz qx qy qz qw"));
       poses.push_back({v[0], pose_of({v[1], v[2], v[3]}, {v[7], v[4], v[5], v[6]}, line)});
+      require_within_world(poses.back().pose, line);
     } else {
       require(v.size() == 12, line_error(line, "a KITTI pose is 12 numbers (3 x 4, row-major)"));
       Pose pose = Pose::Identity();
@@ -130,6 +137,7 @@ std::vector<TimedPose> tum_or_kitti(std::istream& in, PoseFormat format, double 
       const Mat3 r = pose.linear();
       require((r.transpose() * r - Mat3::Identity()).norm() < 1e-5 && r.determinant() > 0,
               line_error(line, "its 3 x 3 part is not a rotation"));
+      require_within_world(pose, line);
       poses.push_back({double(poses.size()) / rate, pose});
     }
   }
@@ -154,6 +162,7 @@ std::vector<TimedPose> colmap(std::istream& in, double rate) {
             line_error(line, "a COLMAP image is: IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME"));
     const Pose world_to_camera = pose_of({tx, ty, tz}, {qw, qx, qy, qz}, line);
     by_name[name] = world_to_camera.inverse();
+    require_within_world(by_name[name], line);
     points_line = true;
   }
   std::vector<TimedPose> poses;
@@ -174,7 +183,7 @@ std::vector<double> waypoint_times(const std::vector<Waypoint>& waypoints) {
   for (std::size_t k = 0; k < waypoints.size(); ++k) {
     const Waypoint& w = waypoints[k];
     const std::string what = "waypoint " + std::to_string(k) + ": ";
-    require(w.position.allFinite(), what + "its position must be finite");
+    require(within_world(w.position), what + "its position must be finite, within 1,000 km");
     require(w.yaw_pitch_roll_degrees.has_value() == keys,
             what + "give yaw_pitch_roll_degrees at every waypoint or at none");
     require(!(w.time && w.speed), what + "give its time or its speed, not both");

@@ -92,7 +92,7 @@ TEST_CASE("a scenario round-trips through JSON and names what is wrong") {
   nlohmann::json old = drone;
   old["generator"] = "flowscape 0.9";
   CHECK_THAT(version_warning(scenario_from_json(old)),
-             Catch::Contains("recorded by flowscape 0.9; this is flowscape 0.14") &&
+             Catch::Contains("recorded by flowscape 0.9; this is flowscape 0.15") &&
                  Catch::Contains("may differ in bytes"));
   old["generator"] = kGeneratorVersion;
   CHECK(version_warning(scenario_from_json(old)).empty());

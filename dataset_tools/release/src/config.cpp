@@ -124,6 +124,9 @@ void validate(const ReleaseConfig& c) {
           "rig is " +
               c.rig + ")");
   for (double v : c.rig_mount) require(std::isfinite(v), "rig_mount must be finite");
+  if (c.rig_mount.size() == 6)
+    require(within_world({c.rig_mount[0], c.rig_mount[1], c.rig_mount[2]}),
+            "rig_mount's x, y, z must lie within 1,000 km (metres)");
   for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
           "vehicles + pedestrians must be in 0..200");

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -267,12 +268,37 @@ ReleaseConfig merge_shards(const fs::path& out, bool verify) {
   }
   config.shard = 0, config.shards = 1;
   if (verify) throw_first_problem(release_problems(out, config));
+  warn_of_mixed_kernels(out, sequence_names(config));
   const nlohmann::json statistics = release_statistics(out, sequence_names(config), config.classes);
   write_dataset_card(out, config, statistics);
   write_manifest(out, config, files, statistics);
   write_explorer(out, out / kExplorerDir, {.progress = true});
   fs::remove_all(out / kShardDir);
   return config;
+}
+
+std::map<std::string, int> kernel_families(const fs::path& out,
+                                           const std::vector<std::string>& sequences) {
+  std::map<std::string, int> families;
+  for (const std::string& name : sequences) {
+    const nlohmann::json generator = read_meta(sequence_dir(out, name)).generator;
+    if (generator.is_object() && generator.contains("kernels"))
+      ++families[generator.at("kernels").get<std::string>()];
+  }
+  return families;
+}
+
+void warn_of_mixed_kernels(const fs::path& out, const std::vector<std::string>& sequences) {
+  const std::map<std::string, int> families = kernel_families(out, sequences);
+  if (families.size() < 2) return;
+  std::string counts;
+  for (const auto& [family, count] : families)
+    counts += (counts.empty() ? "" : ", ") + family + " " + std::to_string(count);
+  std::fprintf(diagnostics(),
+               "%s: the sequences were rendered with different Embree kernel families (%s "
+               "sequences): their float ground truth in the last bits and a few colour "
+               "pixels may differ (docs/release.md, \"Determinism\"; FLOWSCAPE_EMBREE_CONFIG)\n",
+               out.string().c_str(), counts.c_str());
 }
 
 std::vector<ReleaseProblem> release_problems(const fs::path& out, const ReleaseConfig& config) {

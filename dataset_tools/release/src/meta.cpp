@@ -162,7 +162,8 @@ nlohmann::json to_json(const SequenceMeta& m) {
                                     {"rig", &m.rig},
                                     {"statistics", &m.statistics},
                                     {"final", &m.final},
-                                    {"scenario", &m.scenario}})
+                                    {"scenario", &m.scenario},
+                                    {"generator", &m.generator}})
     if (!record->is_null()) j[key] = *record;
   return j;
 }
@@ -194,6 +195,7 @@ SequenceMeta meta_from_json(const nlohmann::json& j) {
     m.statistics = j.value("statistics", nlohmann::json());
     m.final = j.value("final", nlohmann::json());
     m.scenario = j.value("scenario", nlohmann::json());
+    m.generator = j.value("generator", nlohmann::json());
     m.weather_preset();
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(e.what());

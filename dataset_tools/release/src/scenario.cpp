@@ -252,7 +252,10 @@ nlohmann::json actors_json(const std::vector<ScriptedActor>& actors) {
 
 void origin_from_json(const nlohmann::json& j, RigPath& path) {
   require_known(j, {"position", "yaw_pitch_roll_degrees"}, "motion origin: ");
-  if (j.contains("position")) path.origin_position = vector3(j.at("position"), "origin position");
+  if (j.contains("position")) {
+    path.origin_position = vector3(j.at("position"), "origin position");
+    require(within_world(path.origin_position), "origin position must lie within 1,000 km");
+  }
   if (j.contains("yaw_pitch_roll_degrees"))
     path.origin_yaw_pitch_roll_degrees =
         vector3(j.at("yaw_pitch_roll_degrees"), "origin yaw_pitch_roll_degrees");

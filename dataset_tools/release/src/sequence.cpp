@@ -12,9 +12,11 @@
 #include "flowscape/core/random.h"
 #include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/classes.h"
+#include "flowscape/release/manifest.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/renderer/denoise.h"
 #include "flowscape/renderer/neural_denoise.h"
+#include "flowscape/renderer/ray_kernels.h"
 #include "flowscape/scenes/actors.h"
 
 namespace flowscape {
@@ -266,6 +268,11 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   }
   meta.actors = actor_records(s, config.frames, config.classes);
   meta.scenario = to_json(scenario_of(config, plan));
+  const RayKernels kernels = ray_kernels();
+  meta.generator = {{"flowscape", kGeneratorVersion},
+                    {"embree", kernels.embree},
+                    {"kernels", kernels.family},
+                    {"embree_config", kernels.config}};
   return meta;
 }
 

@@ -243,38 +243,40 @@ FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& l
                              int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
   FrameImages images;
-  for (const RigCamera& camera : rig.cameras) {
-    const int view = int(&camera - rig.cameras.data());
-    const TruthRequest request = at_camera(plan.request, camera);
-    GroundTruth truth = [&] {
-      const ScopedPhase phase("ground truth");
-      return renderer.ground_truth(camera.projection, request);
-    }();
-    const ColorLayers layers =
-        release_layers(config, sequence, renderer, camera.projection, request, frame, truth);
-    const Image<float> color = denoised_color(config, layers, camera.projection, truth.depth.view(),
-                                              truth.instance.view());
-    Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
-    if (exposure) {
-      const ScopedPhase phase("final pass");
-      if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
-        *exposure =
-            exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
-      const Image<float> linear =
-          final_color(config, sequence, renderer, camera.projection, request.track, frame,
-                      camera.readout, layers, truth.depth);
-      final =
-          develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame, view);
+  for (const RigCamera& camera : rig.cameras) try {
+      const int view = int(&camera - rig.cameras.data());
+      const TruthRequest request = at_camera(plan.request, camera);
+      GroundTruth truth = [&] {
+        const ScopedPhase phase("ground truth");
+        return renderer.ground_truth(camera.projection, request);
+      }();
+      const ColorLayers layers =
+          release_layers(config, sequence, renderer, camera.projection, request, frame, truth);
+      const Image<float> color = denoised_color(config, layers, camera.projection,
+                                                truth.depth.view(), truth.instance.view());
+      Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
+      if (exposure) {
+        const ScopedPhase phase("final pass");
+        if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
+          *exposure =
+              exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
+        const Image<float> linear =
+            final_color(config, sequence, renderer, camera.projection, request.track, frame,
+                        camera.readout, layers, truth.depth);
+        final = develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame,
+                        view);
+      }
+      CameraImages extras{std::move(final)};
+      if (layout.has("time"))
+        extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
+      if (layout.has("lens_mask"))
+        extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
+      images.views.emplace_back(View::of_camera(camera.name),
+                                view_images(std::move(truth), std::move(clean), plan.steps,
+                                            class_table(config.classes), std::move(extras)));
+    } catch (const RayError& e) {
+      throw e.of_camera(camera.name);
     }
-    CameraImages extras{std::move(final)};
-    if (layout.has("time"))
-      extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
-    if (layout.has("lens_mask"))
-      extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
-    images.views.emplace_back(View::of_camera(camera.name),
-                              view_images(std::move(truth), std::move(clean), plan.steps,
-                                          class_table(config.classes), std::move(extras)));
-  }
   return images;
 }
 
@@ -411,11 +413,17 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
       renderer = std::make_unique<Renderer>(sequence.city.scene);
     }
     Exposure* frame_exposure = final ? &exposure : nullptr;
-    FrameImages images =
-        rig.cameras.empty()
-            ? render_flowscape_frame(config, layout, sequence, *renderer, faces ? &map : nullptr, f,
-                                     frame_exposure)
-            : render_rig_frame(config, layout, rig, sequence, *renderer, f, frame_exposure);
+    FrameImages images = [&] {
+      try {
+        return rig.cameras.empty()
+                   ? render_flowscape_frame(config, layout, sequence, *renderer,
+                                            faces ? &map : nullptr, f, frame_exposure)
+                   : render_rig_frame(config, layout, rig, sequence, *renderer, f, frame_exposure);
+      } catch (const RayError& e) {  // the ERP's, or a face's or rig camera's already named
+        throw std::runtime_error(plan.name + ", frame " + std::to_string(f) + ", " +
+                                 e.of_camera("erp").what());
+      }
+    }();
     if (final) exposures[std::size_t(f)] = exposure;
     if (writing.valid()) writing.get();  // its errors surface here
     if (overlap == WriteOverlap::None) {
@@ -488,6 +496,7 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
     written.manifest = shard_manifest_path(out, config);
     return written;
   }
+  warn_of_mixed_kernels(out, sequence_names(config));  // a run resumed on another machine
   const nlohmann::json statistics = release_statistics(out, sequence_names(config), config.classes);
   write_dataset_card(out, config, statistics);
   write_manifest(out, config, files, statistics);

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "flowscape/core/image.h"
@@ -109,6 +111,25 @@ Image<float> raw_color(const ColorLayers& layers);
 // the means weighted by the samples, the normals summed, and the variance of the pooled mean from
 // both renders' second moments (the spread between them included, as one render would see it).
 ColorLayers pooled(ColorLayers a, int a_samples, const ColorLayers& b, int b_samples);
+
+// A ray the renderer would not hand to Embree (a coordinate NaN, infinite or beyond 1.8e18):
+// thrown instead, naming the pixel it was traced for and, once a caller names it, the camera.
+class RayError : public std::runtime_error {
+ public:
+  RayError(int x, int y, const std::string& problem, const std::string& camera = "")
+      : std::runtime_error((camera.empty() ? "" : "camera " + camera + ", ") + "pixel (" +
+                           std::to_string(x) + ", " + std::to_string(y) + "): " + problem),
+        x(x),
+        y(y),
+        problem(problem),
+        camera(camera) {}
+  // The same error of the camera named `name` (unless one is named already).
+  RayError of_camera(const std::string& name) const {
+    return camera.empty() ? RayError(x, y, problem, name) : *this;
+  }
+  int x, y;
+  std::string problem, camera;
+};
 
 struct RenderStats {
   std::uint64_t rays = 0;  // camera, bounce and shadow rays traced

@@ -2,14 +2,16 @@
 // manifest.json of a release: generator, config, counts, the layout (layout.h) and the sha256 and
 // size of every file; the shard manifests of a release made in pieces, and their merge.
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "flowscape/release/config.h"
 
 namespace flowscape {
 
-inline constexpr const char* kGeneratorVersion = "flowscape 0.14";
+inline constexpr const char* kGeneratorVersion = "flowscape 0.15";
 
 // Paths (relative to `out`, sorted) with the sha256 and size of every file the layout gives the
 // sequences `plans` of a release made with `config` (whatever else their folders hold); a missing
@@ -36,6 +38,15 @@ void write_refused_shard(const std::filesystem::path& out, const ReleaseConfig& 
 // Then writes the dataset card and manifest.json as one process would have, and removes
 // manifests/. Returns the config; throws naming what is missing.
 ReleaseConfig merge_shards(const std::filesystem::path& out, bool verify);
+
+// The Embree kernel families the sequences' meta.json record, with how many sequences each
+// rendered (releases before flowscape 0.15 record none). When there are several, one line on
+// stderr says so: their float ground truth differs in the last bits and some colour pixels
+// (docs/release.md, "Determinism").
+std::map<std::string, int> kernel_families(const std::filesystem::path& out,
+                                           const std::vector<std::string>& sequences);
+void warn_of_mixed_kernels(const std::filesystem::path& out,
+                           const std::vector<std::string>& sequences);
 
 // What a folder holds that a release made with `config` should not: temporary files anywhere,
 // files under sequences/ and card/ that are not the layout's, and, once manifest.json is there,

@@ -40,6 +40,9 @@ struct SequenceMeta {
   nlohmann::json statistics;  // statistics.h's record of the sequence (null when not recorded)
   nlohmann::json final;       // the final pass's shutter, sensor and exposures (final_pass.h)
   nlohmann::json scenario;    // the scenario it renders (scenario.h; null in older releases)
+  // What rendered it: flowscape's version, Embree's, the kernel family Embree ran and
+  // FLOWSCAPE_EMBREE_CONFIG (null in releases before 0.15).
+  nlohmann::json generator;
 
   std::string weather_preset() const;
   // Which of the paper's four weathers (the PanoFlow code's folders) the sequence counts as, from
