@@ -18,6 +18,7 @@
 #include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/renderer/calibration_file.h"
 #include "flowscape/scenes/model_io.h"
 #include "tracing_cli.h"
 
@@ -103,7 +104,11 @@ std::vector<Image<std::uint8_t>> erp_row(const Options& o, const ReleaseConfig& 
                                          const Sequence& sequence, int frame,
                                          const std::string& name) {
   Renderer renderer(sequence.city.scene);
-  const FramePair frames = sequence.frame_pair(frame);
+  // the last frame has no next one: its flow goes back to the frame before
+  const bool last = frame + 1 >= sequence.spec.frames;
+  const Moment now = sequence.moment(frame), before = sequence.moment(frame - last);
+  const FramePair frames =
+      last ? FramePair{now.time, before.time, now.rig, before.rig} : sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames);
   const Image<float> color = release_color(config, sequence, renderer, erp, frame, gt);
@@ -161,9 +166,10 @@ std::pair<ReleaseConfig, Scenario> chosen_scenario(const Options& o) {
 std::vector<Image<std::uint8_t>> render_scenario(const Options& o) {
   const auto [config, scenario] = chosen_scenario(o);
   const int frame = int(std::lround(o.time * scenario.frame_rate));
-  if (frame + 1 >= config.frames)
-    throw std::invalid_argument("--time " + std::to_string(o.time) + ": the sequence has " +
-                                std::to_string(config.frames) + " frames");
+  if (frame < 0 || frame >= config.frames)
+    throw std::invalid_argument("--time " + std::to_string(o.time) +
+                                ": the sequence's frames are from 0 to " +
+                                std::to_string((config.frames - 1) / scenario.frame_rate) + " s");
   const std::string name = o.scenario.empty()
                                ? std::filesystem::path(o.from_release).filename().string()
                                : std::filesystem::path(o.scenario).stem().string();
@@ -178,6 +184,10 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
   ReleaseConfig config = o.color;
   config.rig = rig_name, config.height = o.height;
   const Rig rig = release_rig(config);
+  if (is_calibration_file(config.rig))
+    for (const std::string& warning : calibration_warnings(rig))
+      std::fprintf(diagnostics(), "city_preview: %s: warning: %s\n", config.rig.c_str(),
+                   warning.c_str());
   if (rig.cameras.empty()) {
     std::vector<std::vector<Image<std::uint8_t>>> rows{render_row(o, map, "sunny")};
     label_tile(rows[0][0], rig_name + " erp, " + map_name(map) + " sunny");

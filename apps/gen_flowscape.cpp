@@ -313,11 +313,16 @@ int main(int argc, char** argv) {
           std::fprintf(diagnostics(), "gen_flowscape: %s: %s\n", file.c_str(), warning.c_str());
         sequence_spec(c, plan);
       }
+    if (is_calibration_file(c.rig))  // a wide-angle calibration that sees only part of its image
+      for (const std::string& warning : calibration_warnings(release_rig(c)))
+        std::fprintf(diagnostics(), "gen_flowscape: %s: warning: %s\n", c.rig.c_str(),
+                     warning.c_str());
     if (!shard.empty()) parse_shard(shard, c);
     if (sources.demo && !out_option->count()) out = kDemoOut;
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
     if (check) {
+      check_user_files(c);
       std::printf("%zu sequences of %d frames; shard %d/%d makes %zu of them\n",
                   plan_sequences(c).size(), c.frames, c.shard, c.shards, shard_plans(c).size());
       const std::vector<ReleaseProblem> problems = release_problems(out, c);

@@ -35,4 +35,7 @@ for name in "${names[@]}"; do
     { rm -f "$partial"; echo "fetch_sky_maps: $name.exr: sha256 differs from the pinned one" >&2; exit 1; }
   mv "$partial" "$exr"
 done
+pins=()
+for name in "${names[@]}"; do pins+=("$name.exr=${exr_sha256[$name]}"); done
+write_pins "$dir" "${pins[@]}"
 echo "fetch_sky_maps: sky maps ${names[*]} and their CC0 licence in $dir"

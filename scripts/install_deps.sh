@@ -8,7 +8,7 @@ set -euo pipefail
 required=(
   build-essential cmake pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libtinygltf-dev libassimp-dev
-  libeigen3-dev libopencv-dev nlohmann-json3-dev libtbb-dev libcli11-dev
+  libeigen3-dev libopencv-dev nlohmann-json3-dev libtbb-dev libcli11-dev libyaml-cpp-dev
 )
 optional=(
   clang-format clang libclang-rt-14-dev assimp-testmodels  # formatting, the fuzzers, test models

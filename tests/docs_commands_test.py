@@ -1,10 +1,10 @@
 """Runs every command of the ```sh blocks of README.md and docs/*.md, as a user would from the
 repository root, in a scratch folder holding links to build/, python/ and scripts/.
 
-The scaling rule (so CI stays fast; README "Tests" states it): a release command without --demo
+The scaling rule (so CI stays fast; README "A first hour" states it): a release command without --demo
 runs as written with --check (options validated, the plan printed), then with its sizes swapped
 for a tiny release (1 map, 3 frames, 16 x 32 ERP, 8-pixel faces, 1 sample; a rig file's or
-calibration's cameras at --scale 1/16; 6 sequences for dataset/ and 4 for small/, which later
+calibration's cameras at --scale 1/16, the rig an option's or its --scenario file's; 6 sequences for dataset/ and 4 for small/, which later
 commands preview, split and train on, else 2), so the commands after it have a dataset; city_preview runs
 with few actors, 32-pixel images and one sample per pixel, and exports one map's glTF; a training
 run takes 20 steps. The files the docs
@@ -15,6 +15,7 @@ opencv.yml as OpenCV writes it; a shell prompt (`machine-a$`) is dropped, absolu
 What cannot run in CI is listed with the reason (NOT_RUN); a VAR=value prefix stays in front of each run. `python3` is Debian's (/usr/bin first
 on the PATH). Usage: docs_commands_test.py REPO_ROOT BUILD_DIR"""
 import glob
+import json
 import os
 import re
 import shlex
@@ -63,7 +64,10 @@ distortion_coefficients: !!opencv-matrix
 
 
 def documented_commands():
-    for path in [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "*.md"))):
+    # docs/tools.md first after the README: its release (dataset/) is what later pages read
+    first = [os.path.join(root, "README.md"), os.path.join(root, "docs", "tools.md")]
+    rest = sorted(p for p in glob.glob(os.path.join(root, "docs", "*.md")) if p not in first)
+    for path in first + rest:
         for block in re.findall(r"```sh\n(.*?)```", open(path).read(), re.S):
             for line in block.replace("\\\n", " ").splitlines():
                 line = line.split("  #")[0].strip()
@@ -71,8 +75,16 @@ def documented_commands():
                     yield os.path.relpath(path, root), line
 
 
+def scenario_rig(words):
+    """The rig a --scenario file names (a preset, or a file relative to the scenario's folder)."""
+    if "--scenario" not in words:
+        return "flowscape"
+    return json.load(open(os.path.join(root, words[words.index("--scenario") + 1]))).get("rig", "flowscape")
+
+
 def tiny(words, options=SIZE_OPTIONS, sizes=TINY):
-    rig = next((words[k + 1] for k, w in enumerate(words) if w in ("--rig", "--rig-from")), "flowscape")
+    rig = next((words[k + 1] for k, w in enumerate(words) if w in ("--rig", "--rig-from")),
+               scenario_rig(words))
     if rig != "flowscape":  # no faces; a rig file or calibration sets its own image sizes
         user_file = rig.endswith((".json", ".yaml", ".yml", ".xml"))
         dropped = {"--face-size"} | ({"--resolution"} if user_file else set())

@@ -39,7 +39,7 @@ done
 best=${families[-1]}
 # the other libraries that pick kernels at run time: OpenCV's SIMD dispatch (the final pass's blurs
 # and resampling) changes no byte; oneDNN's (--denoise oidn) a few colour values
-check "OpenCV's dispatch held to its SSE2 baseline: the same bytes" env \
+check "OpenCV's dispatch held to its SSE2 baseline: the same bytes" env FLOWSCAPE_EMBREE_CONFIG=isa=$best \
   OPENCV_CPU_DISABLE=SSE3,SSSE3,SSE4.1,SSE4.2,POPCNT,FP16,AVX,AVX2,FMA3,AVX512F,AVX512BW,AVX512CD,AVX512DQ,AVX512VL,AVX512-SKX \
   "$bin/gen_flowscape" "${flowscape[@]}" --out "$work/opencv-sse2"
 check "OpenCV's SSE2 baseline = its best dispatch, byte for byte" \

@@ -130,4 +130,71 @@ check "config: frames 4.7" fails_clearly '"frames" must be an integer (got 4.7)'
 check "--seed -1" fails_clearly "--seed: must be a whole number >= 0" "$bin/gen_flowscape" --seed -1 --check
 check "--shard 1/2x" fails_clearly "--shard wants K/N with whole numbers" "$bin/gen_flowscape" --shard 1/2x --check
 
+# ---- hostile files a user brings: one line naming file and key, nothing written ----
+refuses() {  # refuses EXPECTED_TEXT OUT COMMAND...: one line, non-zero exit, no OUT
+  local expected=$1 out=$2; shift 2
+  fails_clearly "$expected" "$@" && [ ! -e "$out" ]
+}
+python3 - "$work" <<'PY'
+import json, struct, sys
+w = sys.argv[1]
+open(f"{w}/deep.yaml", "w").write("cam0: " + "[" * 60000 + "]" * 60000 + "\n")
+open(f"{w}/deep.xml", "w").write('<?xml version="1.0"?>\n<opencv_storage>' + "<a>" * 30000)
+open(f"{w}/many.yaml", "w").write("".join(
+    f"cam{n}: {{camera_model: pinhole, intrinsics: [1, 1, 1, 1], resolution: [4, 4]}}\n" for n in range(100)))
+json.dump({"name": "r", "cameras": [{"name": "front", "model": "pinhole", "parameters": {"width": "wide"},
+           "mount": {"position": [0, 0, 0], "yaw_pitch_roll_degrees": [0, 0, 0]}}]}, open(f"{w}/typed.json", "w"))
+for name, change in [("frames", {"frames": 2.9}), ("wrap", {"frames": 2**32 + 2}),
+                     ("vehicles", {"traffic": {"vehicles": 2**32 + 1}}),
+                     ("seed", {"world": {"map": 0, "seed": -1}}),
+                     ("folder", {"motion": {"pose_file": "poses"}}),
+                     ("device", {"motion": {"pose_file": "/dev/zero"}})]:
+    json.dump(dict({"flowscape_scenario": 1}, **change), open(f"{w}/{name}.json", "w"))
+PY
+mkdir -p "$work/poses"
+python3 - "$work" "$(dirname "$0")/fuzz/corpus/model/triangle.gltf" <<'PY'
+import json, sys
+w = sys.argv[1]
+gltf = json.loads(open(sys.argv[2], "rb").read()[1:])
+gltf["nodes"] = [{"children": [n + 1]} for n in range(19999)] + [{"mesh": 0}]
+json.dump(gltf, open(f"{w}/chain.gltf", "w"))
+json.dump({"flowscape_scenario": 1, "world": {"file": "chain.gltf", "units": "metres", "up": "y",
+           "classes": [["*", "Road"]]}, "motion": {"waypoints": [{"position": [0, 0, 1], "time": 0},
+           {"position": [1, 0, 1], "time": 1}]}, "frames": 2}, open(f"{w}/chain.json", "w"))
+header = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+          b"property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n")
+open(f"{w}/cut.ply", "wb").write(header + bytes(20))
+PY
+check "calibration: a YAML flow 60,000 deep" \
+  refuses "deep.yaml: nested more than 64 levels deep" "$work/o1" "$bin/gen_flowscape" "${small[@]}" --rig-from "$work/deep.yaml" --rig-mount 0,0,0,0,0,0 --out "$work/o1"
+check "calibration: an XML 30,000 deep" \
+  refuses "deep.xml: nested more than 64 levels deep" "$work/o2" "$bin/gen_flowscape" "${small[@]}" --rig-from "$work/deep.xml" --rig-mount 0,0,0,0,0,0 --out "$work/o2"
+check "calibration: 100 cameras" \
+  refuses "many.yaml: holds 100 cameras; a rig takes at most 16" "$work/o3" "$bin/gen_flowscape" "${small[@]}" --rig-from "$work/many.yaml" --rig-mount 0,0,0,0,0,0 --out "$work/o3"
+check "rig file: a key of the wrong type names the file and key" \
+  refuses "typed.json: rig: camera \"front\": lens parameter \"width\"" "$work/o4" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --rig "$work/typed.json" --out "$work/o4"
+for case in "frames:\"frames\" must be an integer (got 2.9)" "wrap:\"frames\" 4294967298 is out of range" \
+            "vehicles:\"vehicles\" 4294967297 is out of range" "seed:\"seed\" -1 is out of range" \
+            "folder:poses: is a folder, expected a pose file" "device:/dev/zero: not a regular file, expected a pose file"; do
+  name=${case%%:*}
+  check "scenario: $name" refuses "${case#*:}" "$work/s-$name" "$bin/gen_flowscape" --scenario "$work/$name.json" --out "$work/s-$name"
+done
+check "world: a glTF node chain 20,000 deep" \
+  refuses "chain.gltf: nodes nest more than 256 levels deep" "$work/o5" "$bin/gen_flowscape" --scenario "$work/chain.json" --resolution 8 --face-size 4 --spp 1 --out "$work/o5"
+check "model: a truncated PLY (assimp aborted on it)" \
+  refuses "cut.ply: its header declares elements of at least 37 bytes, the file holds 20" "$work/o6" "$bin/gen_flowscape" "${small[@]}" --model "car=$work/cut.ply" --out "$work/o6"
+mkdir -p "$work/skies"
+python3 - "$work/skies" <<'PY'
+import hashlib, sys
+d = sys.argv[1]
+data = bytearray(b"v2/\x01" + bytes(4000))  # not a real map: its hash is all that is checked first
+open(f"{d}/park.exr", "wb").write(data)
+pinned = hashlib.sha256(bytes(data)).hexdigest()
+data[2000] ^= 1
+open(f"{d}/park.exr", "wb").write(data)
+open(f"{d}/SHA256SUMS", "w").write(f"{pinned}  park.exr\n")
+PY
+check "sky map: one flipped bit since it was fetched" \
+  refuses "park.exr: sha256 " "$work/o7" env FLOWSCAPE_SKY_MAPS="$work/skies" "$bin/gen_flowscape" "${small[@]}" --sky park --out "$work/o7"
+
 finish

@@ -114,7 +114,7 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
 
 void write_text(const fs::path& path, const std::string& text) { write_file(path, text); }
 
-std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
+std::uintmax_t require_regular_file(const fs::path& path, std::uintmax_t max_bytes) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (!fs::exists(status)) throw FileError(path, "file not found");
@@ -124,6 +124,11 @@ std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
   if (size > max_bytes)
     throw FileError(path, "too large: " + std::to_string(size) + " bytes (at most " +
                               std::to_string(max_bytes) + ")");
+  return size;
+}
+
+std::string read_file(const fs::path& path, std::uintmax_t max_bytes) {
+  const std::uintmax_t size = require_regular_file(path, max_bytes);
   std::ifstream in(path, std::ios::binary);
   std::string bytes(size, '\0');
   errno = 0;

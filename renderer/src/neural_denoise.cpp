@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/sha256.h"
 #include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
@@ -87,6 +88,7 @@ fs::path oidn_weights_file(const std::string& size) {
     throw FileError(file,
                     "missing: scripts/install_deps.sh fetches OIDN's weights (or set "
                     "FLOWSCAPE_OIDN_WEIGHTS to their folder; --denoise atrous needs none)");
+  require_pinned(file);
   return file;
 }
 

@@ -30,6 +30,15 @@ const std::vector<std::pair<std::string, std::string>> kParameterAliases = {
     {"dist_coeffs", "D"},       {"distCoeffs", "D"},      {"distortion_coefficients", "D"},
     {"distortion_coeffs", "D"}, {"image_width", "width"}, {"image_height", "height"}};
 
+// `key`'s text (`fallback` when absent); another type is an error naming the key.
+std::string text(const nlohmann::json& object, const char* key, const std::string& fallback,
+                 const std::string& what) {
+  if (!object.contains(key)) return fallback;
+  require(object.at(key).is_string(),
+          what + "\"" + key + "\" must be text (got " + object.at(key).dump() + ")");
+  return object.at(key).get<std::string>();
+}
+
 Vec3 vector3(const nlohmann::json& value, const std::string& what) {
   require(value.is_array() && value.size() == 3, what + " must be 3 numbers");
   Vec3 v;
@@ -71,14 +80,15 @@ Readout readout_from_json(const nlohmann::json& j, const std::string& what) {
 
 RigCamera camera_from_json(const nlohmann::json& c) {
   require(c.is_object(), "every camera must be an object");
-  const std::string name = c.value("name", "");
+  const std::string name = text(c, "name", "", "a camera's ");
   require(!name.empty() &&
               name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_-") == std::string::npos,
           "camera names are lower-case letters, digits, - and _ (got \"" + name + "\")");
   const std::string what = "camera \"" + name + "\": ";
   require_known_keys(c, {"name", "model", "parameters", "mount", "rolling_shutter"}, what);
-  const std::string model = c.value("model", "");
+  const std::string model = text(c, "model", "", what);
   const nlohmann::json parameters = c.value("parameters", nlohmann::json::object());
+  require(parameters.is_object(), what + "\"parameters\" must be an object");
   require(c.contains("mount"),
           what + "needs a \"mount\": {\"position\": [x, y, z] (metres, rig frame)" +
               (model == "equirectangular" ? std::string("}")
@@ -104,12 +114,13 @@ RigCamera camera_from_json(const nlohmann::json& c) {
   }
   try {
     if (model == "equirectangular") {
-      const int height = parameters.value("height", 0);
-      require(height >= 2 && height <= 8192,
-              what + "equirectangular \"height\" must be in 2..8192");
+      const nlohmann::json height = parameters.value("height", nlohmann::json());
+      require(height.is_number_integer() && height.get<std::int64_t>() >= 2 &&
+                  height.get<std::int64_t>() <= 8192,
+              what + "equirectangular \"height\" must be a whole number in 2..8192");
       require(!mount.contains("camera_to_rig") && !mount.contains("yaw_pitch_roll_degrees"),
               what + "an equirectangular camera keeps the rig's axes (no rotation)");
-      camera.projection = Projection::equirectangular(height);
+      camera.projection = Projection::equirectangular(height.get<int>());
     } else {
       camera.projection = Projection::of_lens(make_lens(model, parameters), rotation);
       const nlohmann::json read_back = camera.projection.lens->parameters();
@@ -173,9 +184,9 @@ Rig rig_preset(const std::string& name, int size) {
 Rig rig_from_json(const nlohmann::json& json) {
   require(json.is_object(), "expected a JSON object {\"name\", \"cameras\"}");
   require_known_keys(json, {"name", "cameras"}, "");
-  Rig rig{json.value("name", "custom"), {}};
+  Rig rig{text(json, "name", "custom", ""), {}};
   const nlohmann::json cameras = json.value("cameras", nlohmann::json());
-  require(cameras.is_array() && !cameras.empty() && cameras.size() <= 16,
+  require(cameras.is_array() && !cameras.empty() && cameras.size() <= kMaxRigCameras,
           "\"cameras\" must list 1 to 16 cameras");
   std::set<std::string> names;
   for (const nlohmann::json& c : cameras) {

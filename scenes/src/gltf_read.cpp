@@ -148,28 +148,51 @@ tinygltf::Model read_gltf(const std::string& path) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
                          : loader.LoadASCIIFromFile(&model, &error, &warning, path);
   if (!ok) fail(path, error.empty() ? "cannot read glTF" : error.substr(0, error.find('\n')));
+  for (const std::string& extension : model.extensionsRequired)
+    if (extension != "EXT_texture_webp")
+      fail(path, "requires the glTF extension " + extension +
+                     ", which this reader does not support (it reads EXT_texture_webp; export "
+                     "the file without " +
+                     extension + ")");
   return model;
 }
 
 namespace {
 
-using Visit = std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>;
+// A node met on the walk: its index, its parent's transform and its place in the tree.
+struct Pending {
+  int index;
+  Eigen::Matrix4d parent;
+  std::size_t depth;
+};
 
 // glTF's node hierarchy is a forest: every node is visited at most once, so a file cannot make the
-// walk loop or repeat itself.
-void walk_nodes(const tinygltf::Model& model, int index, const Eigen::Matrix4d& parent,
-                std::vector<bool>& visited, const std::string& path, const Visit& visit) {
-  if (index < 0 || index >= int(model.nodes.size()))
-    fail(path, "node " + std::to_string(index) + " does not exist (the file has " +
-                   std::to_string(model.nodes.size()) + ")");
-  if (visited[index])
-    fail(path, "node " + std::to_string(index) +
-                   " is reached twice (a cycle, or two parents): glTF nodes form a tree");
-  visited[index] = true;
-  const tinygltf::Node& node = model.nodes[index];
-  const Eigen::Matrix4d transform = parent * node_matrix(node);
-  visit(node, transform);
-  for (int child : node.children) walk_nodes(model, child, transform, visited, path, visit);
+// walk loop or repeat itself; the walk keeps its own stack, so no depth overflows ours.
+void walk_nodes(const tinygltf::Model& model, int root, std::vector<bool>& visited,
+                const std::string& path, const NodeVisit& visit) {
+  std::vector<Pending> pending{{root, Eigen::Matrix4d::Identity(), 0}};
+  std::vector<std::string> lineage;  // the names from the root down to the node
+  while (!pending.empty()) {
+    const Pending here = pending.back();
+    pending.pop_back();
+    const int index = here.index;
+    if (index < 0 || index >= int(model.nodes.size()))
+      fail(path, "node " + std::to_string(index) + " does not exist (the file has " +
+                     std::to_string(model.nodes.size()) + ")");
+    if (visited[index])
+      fail(path, "node " + std::to_string(index) +
+                     " is reached twice (a cycle, or two parents): glTF nodes form a tree");
+    if (here.depth >= kMaxNodeDepth)
+      fail(path, "nodes nest more than " + std::to_string(kMaxNodeDepth) + " levels deep");
+    visited[index] = true;
+    const tinygltf::Node& node = model.nodes[index];
+    lineage.resize(here.depth);
+    lineage.push_back(node.name);
+    const Eigen::Matrix4d transform = here.parent * node_matrix(node);
+    visit(node, transform, {lineage.rbegin(), lineage.rend()});
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+      pending.push_back({*child, transform, here.depth + 1});
+  }
 }
 
 // The nodes no other node lists as a child.
@@ -186,7 +209,7 @@ std::vector<int> root_nodes(const tinygltf::Model& model) {
 
 }  // namespace
 
-void for_each_node(const tinygltf::Model& model, const std::string& path, const Visit& visit) {
+void for_each_node(const tinygltf::Model& model, const std::string& path, const NodeVisit& visit) {
   std::vector<bool> visited(model.nodes.size(), false);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (!model.scenes.empty() && scene >= int(model.scenes.size()))
@@ -194,7 +217,7 @@ void for_each_node(const tinygltf::Model& model, const std::string& path, const 
                    std::to_string(model.scenes.size()) + ")");
   const std::vector<int> roots =
       model.scenes.empty() ? root_nodes(model) : model.scenes[scene].nodes;
-  for (int n : roots) walk_nodes(model, n, Eigen::Matrix4d::Identity(), visited, path, visit);
+  for (int n : roots) walk_nodes(model, n, visited, path, visit);
 }
 
 }  // namespace flowscape

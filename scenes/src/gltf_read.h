@@ -19,10 +19,15 @@ inline Vec3 to_y_up(const Eigen::Vector3f& p) { return {p.y(), p.z(), p.x()}; }
 // The whole file; images are kept as the bytes they are stored in (not decoded).
 tinygltf::Model read_gltf(const std::string& path);
 
-// Every node of the default scene (or every root when there is none) with its world transform.
-// A scene index the file lacks, a node that is its own ancestor or has two parents is an error.
-void for_each_node(const tinygltf::Model& model, const std::string& path,
-                   const std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&)>& visit);
+// Deeper than any model's node tree; a chain of nodes deeper than this is refused.
+inline constexpr std::size_t kMaxNodeDepth = 256;
+// visit(node, its world transform, the names of the node and its ancestors, the node's first).
+using NodeVisit = std::function<void(const tinygltf::Node&, const Eigen::Matrix4d&,
+                                     const std::vector<std::string>&)>;
+// Every node of the default scene (or every root when there is none), parents before children,
+// siblings in order. A scene index the file lacks, a node that is its own ancestor or has two
+// parents, or nodes nested more than kMaxNodeDepth deep are an error naming the file.
+void for_each_node(const tinygltf::Model& model, const std::string& path, const NodeVisit& visit);
 
 // The accessor's element count, after checking that its last element lies inside its buffer.
 std::size_t accessor_count(const tinygltf::Model& model, const tinygltf::Accessor& accessor,

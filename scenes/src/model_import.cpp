@@ -6,6 +6,7 @@
 #include <assimp/scene.h>
 #include <fnmatch.h>
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include "flowscape/scenes/model_io.h"
 #include "flowscape/scenes/shapes.h"
 #include "gltf_read.h"
+#include "model_files.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
@@ -54,10 +56,13 @@ std::string decoded_uri(const std::string& uri) {
   return out;
 }
 
-// How a file is read: the class of each of its named parts (a node's or mesh's name) and whether
-// its up axis is z (ours) rather than y (glTF's, and most other formats').
+// The names a part goes by: its node's (else its mesh's), then its ancestors', nearest first.
+using Lineage = std::vector<std::string>;
+
+// How a file is read: the class of each of its parts (from its lineage) and whether its up axis is
+// z (ours) rather than y (glTF's, and most other formats').
 struct Reading {
-  std::function<SemanticClass(const std::string& name)> class_of;
+  std::function<SemanticClass(const Lineage& names)> class_of;
   bool z_up = false;
   bool world = false;  // a world holds still: animations and skins are refused
   Eigen::Vector3d axes(const V3& v) const { return z_up ? v : from_y_up(v); }
@@ -124,18 +129,35 @@ Material::Kind pbr_kind(double metallic, double roughness) {
 
 // ---- glTF ------------------------------------------------------------------------------------
 
+// A texture's image: its own source, else the source of its EXT_texture_webp extension (files
+// that require the extension, Godot's and web-optimised ones, carry only that).
+int texture_source(const tinygltf::Texture& texture) {
+  if (texture.source >= 0) return texture.source;
+  const auto webp = texture.extensions.find("EXT_texture_webp");
+  if (webp == texture.extensions.end() || !webp->second.Has("source")) return -1;
+  const tinygltf::Value& source = webp->second.Get("source");
+  return source.IsInt() ? source.GetNumberAsInt() : -1;
+}
+
 std::string gltf_image(const tinygltf::Model& model, int texture, const std::string& path) {
   if (texture < 0) return {};
   if (texture >= int(model.textures.size())) fail(path, "a material names a missing texture");
-  const int source = model.textures[texture].source;
+  const int source = texture_source(model.textures[texture]);
   if (source < 0 || source >= int(model.images.size()))
-    fail(path, "a texture names a missing image");
+    fail(path, "texture " + std::to_string(texture) + " names a missing image (" +
+                   std::to_string(source) + " of " + std::to_string(model.images.size()) + ")");
   const tinygltf::Image& image = model.images[source];
+  if (image.uri.starts_with("data:image/webp"))  // tinygltf decodes no WebP data uri
+    fail(path, "image " + std::to_string(source) +
+                   " is WebP in a data: uri, which the glTF reader cannot decode: keep it in the "
+                   "binary buffer (.glb) or in a file beside the model");
   if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0)
     return (fs::path(path).parent_path() / decoded_uri(image.uri)).string();
   if (image.image.empty()) fail(path, "an embedded image has no bytes");
-  return cached_texture(image.image.data(), image.image.size(),
-                        image.mimeType == "image/jpeg" ? "jpg" : "png");
+  const std::string type = image.mimeType == "image/jpeg"   ? "jpg"
+                           : image.mimeType == "image/webp" ? "webp"
+                                                            : "png";
+  return cached_texture(image.image.data(), image.image.size(), type);  // named by its type
 }
 
 Material gltf_material(const tinygltf::Model& model, const tinygltf::Material& m,
@@ -200,34 +222,38 @@ Mesh load_gltf(const std::string& path, const Reading& reading, Scene& scene,
                   path);
   std::map<int, std::uint16_t> materials;  // glTF material -> scene material
   Imported out{reading, {}};
-  for_each_node(model, path, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
-    if (node.mesh < 0) return;
-    if (node.mesh >= int(model.meshes.size()))
-      fail(path, "node " + node.name + " refers to a mesh the file lacks");
-    const SemanticClass cls =
-        reading.class_of(node.name.empty() ? model.meshes[node.mesh].name : node.name);
-    for (const tinygltf::Primitive& primitive : model.meshes[node.mesh].primitives) {
-      if (primitive.mode != -1 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
-      std::vector<V3> positions = gltf_attribute<3>(model, primitive, "POSITION", path),
-                      normals = gltf_attribute<3>(model, primitive, "NORMAL", path);
-      if (positions.empty()) fail(path, "a primitive has no POSITION");
-      std::vector<Eigen::Vector4d> tangents = gltf_attribute<4>(model, primitive, "TANGENT", path);
-      transform_part(transform, positions, normals, tangents);
-      const std::vector<int> indices = triangle_indices(model, primitive, positions.size(), path);
-      std::uint16_t material = fallback;
-      if (primitive.material >= int(model.materials.size()))
-        fail(path, "a primitive names a missing material");
-      if (primitive.material >= 0) {
-        auto [it, added] = materials.emplace(primitive.material, 0);
-        if (added)
-          it->second =
-              add_material(scene, gltf_material(model, model.materials[primitive.material], path));
-        material = it->second;
-      }
-      add_part(out, positions, normals, gltf_attribute<2>(model, primitive, "TEXCOORD_0", path),
-               tangents, indices, material, cls, path);
-    }
-  });
+  for_each_node(
+      model, path,
+      [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform, Lineage names) {
+        if (node.mesh < 0) return;
+        if (node.mesh >= int(model.meshes.size()))
+          fail(path, "node " + node.name + " refers to a mesh the file lacks");
+        if (names.front().empty()) names.front() = model.meshes[node.mesh].name;
+        const SemanticClass cls = reading.class_of(names);
+        for (const tinygltf::Primitive& primitive : model.meshes[node.mesh].primitives) {
+          if (primitive.mode != -1 && primitive.mode != TINYGLTF_MODE_TRIANGLES) continue;
+          std::vector<V3> positions = gltf_attribute<3>(model, primitive, "POSITION", path),
+                          normals = gltf_attribute<3>(model, primitive, "NORMAL", path);
+          if (positions.empty()) fail(path, "a primitive has no POSITION");
+          std::vector<Eigen::Vector4d> tangents =
+              gltf_attribute<4>(model, primitive, "TANGENT", path);
+          transform_part(transform, positions, normals, tangents);
+          const std::vector<int> indices =
+              triangle_indices(model, primitive, positions.size(), path);
+          std::uint16_t material = fallback;
+          if (primitive.material >= int(model.materials.size()))
+            fail(path, "a primitive names a missing material");
+          if (primitive.material >= 0) {
+            auto [it, added] = materials.emplace(primitive.material, 0);
+            if (added)
+              it->second = add_material(
+                  scene, gltf_material(model, model.materials[primitive.material], path));
+            material = it->second;
+          }
+          add_part(out, positions, normals, gltf_attribute<2>(model, primitive, "TEXCOORD_0", path),
+                   tangents, indices, material, cls, path);
+        }
+      });
   return finished(std::move(out));
 }
 
@@ -315,17 +341,38 @@ void add_assimp_mesh(Imported& out, const aiScene* file, const aiMesh* source,
   add_part(out, positions, normals, uvs, tangents, indices, material, cls, path);
 }
 
-// Every node under `node` with its transform to the file's root.
-void walk_assimp_nodes(const aiNode* node, const Eigen::Matrix4d& parent,
-                       const std::function<void(const aiNode*, const Eigen::Matrix4d&)>& visit) {
+Eigen::Matrix4d local_transform(const aiNode* node) {
   Eigen::Matrix4d local;
   const aiMatrix4x4& m = node->mTransformation;
   local << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3,
       m.d4;
-  const Eigen::Matrix4d transform = parent * local;
-  visit(node, transform);
-  for (unsigned k = 0; k < node->mNumChildren; ++k)
-    walk_assimp_nodes(node->mChildren[k], transform, visit);
+  return local;
+}
+
+// Every node under the root, parents first, with its transform to the root and its lineage (the
+// root, which assimp names after the file, left out); its own stack, nesting capped as glTF's.
+void walk_assimp_nodes(
+    const aiNode* root, const std::string& path,
+    const std::function<void(const aiNode*, const Eigen::Matrix4d&, const Lineage&)>& visit) {
+  struct Pending {
+    const aiNode* node;
+    Eigen::Matrix4d parent;
+    std::size_t depth;
+  };
+  std::vector<Pending> pending{{root, Eigen::Matrix4d::Identity(), 0}};
+  Lineage lineage;  // from the root's first child down
+  while (!pending.empty()) {
+    const Pending here = pending.back();
+    pending.pop_back();
+    if (here.depth >= kMaxNodeDepth)
+      fail(path, "nodes nest more than " + std::to_string(kMaxNodeDepth) + " levels deep");
+    lineage.resize(here.depth == 0 ? 0 : here.depth - 1);
+    if (here.depth > 0) lineage.push_back(here.node->mName.C_Str());
+    const Eigen::Matrix4d transform = here.parent * local_transform(here.node);
+    visit(here.node, transform, {lineage.rbegin(), lineage.rend()});
+    for (unsigned k = here.node->mNumChildren; k-- > 0;)
+      pending.push_back({here.node->mChildren[k], transform, here.depth + 1});
+  }
 }
 
 // A model's meshes come pre-transformed (one per material); a world's are walked node by node,
@@ -336,42 +383,55 @@ Mesh load_with_assimp(const std::string& path, const Reading& reading, Scene& sc
   // uvs with their origin at the image's top-left corner, like glTF's and the texture lookups'
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_CalcTangentSpace | aiProcess_FlipUVs;
+  const std::string extension = fs::path(path).extension().string();
+  if (extension == ".ply" || extension == ".PLY") check_ply(path, kMaxModelTriangles);
+  const std::string grouped = reading.world && (extension == ".obj" || extension == ".OBJ")
+                                  ? obj_with_groups_first(path)
+                                  : "";
+  const unsigned how = reading.world ? flags : flags | aiProcess_PreTransformVertices;
   const aiScene* file =
-      importer.ReadFile(path, reading.world ? flags : flags | aiProcess_PreTransformVertices);
+      grouped.empty() ? importer.ReadFile(path, how)
+                      : importer.ReadFileFromMemory(grouped.data(), grouped.size(), how, "obj");
   if (!file || (file->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     fail(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
   std::map<unsigned, std::uint16_t> materials;
   Imported out{reading, {}};
   if (!reading.world) {
     for (unsigned k = 0; k < file->mNumMeshes; ++k)
-      add_assimp_mesh(out, file, file->mMeshes[k], nullptr, reading.class_of(""), materials, scene,
-                      fallback, path);
+      add_assimp_mesh(out, file, file->mMeshes[k], nullptr, reading.class_of({""}), materials,
+                      scene, fallback, path);
     return finished(std::move(out));
   }
   refuse_motion(file->mNumAnimations > 0,
                 std::any_of(file->mMeshes, file->mMeshes + file->mNumMeshes,
                             [](const aiMesh* m) { return m->HasBones(); }),
                 path);
-  walk_assimp_nodes(file->mRootNode, Eigen::Matrix4d::Identity(),
-                    [&](const aiNode* node, const Eigen::Matrix4d& transform) {
+  walk_assimp_nodes(file->mRootNode, path,
+                    [&](const aiNode* node, const Eigen::Matrix4d& transform, Lineage names) {
+                      if (names.empty()) names = {node->mName.C_Str()};  // meshes on the root
                       for (unsigned k = 0; k < node->mNumMeshes; ++k) {
                         const aiMesh* mesh = file->mMeshes[node->mMeshes[k]];
-                        const std::string name =
-                            node->mName.length > 0 ? node->mName.C_Str() : mesh->mName.C_Str();
-                        add_assimp_mesh(out, file, mesh, &transform, reading.class_of(name),
+                        Lineage own = names;
+                        if (own.front().empty()) own.front() = mesh->mName.C_Str();
+                        add_assimp_mesh(out, file, mesh, &transform, reading.class_of(own),
                                         materials, scene, fallback, path);
                       }
                     });
   return finished(std::move(out));
 }
 
-SemanticClass world_class(const WorldModel& world, const std::string& name) {
-  std::string patterns;
+// The class of the first pattern that matches the part's name or an ancestor's (a Sketchfab
+// model's "Object_4" under its named "Car_body").
+SemanticClass world_class(const WorldModel& world, const Lineage& names) {
+  std::string patterns, seen;
   for (const WorldClass& c : world.classes) {
-    if (fnmatch(c.pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0) return c.cls;
+    for (const std::string& name : names)
+      if (fnmatch(c.pattern.c_str(), name.c_str(), FNM_CASEFOLD) == 0) return c.cls;
     patterns += (patterns.empty() ? "" : ", ") + c.pattern;
   }
-  fail(world.path, "its part \"" + name + "\" matches no class pattern (" + patterns +
+  for (std::size_t k = 1; k < names.size(); ++k) seen += (k == 1 ? " (in " : " < ") + names[k];
+  fail(world.path, "its part \"" + names.front() + "\"" + (seen.empty() ? "" : seen + ")") +
+                       " matches no class pattern (" + patterns +
                        "): add one (\"*\" takes the rest)");
 }
 
@@ -397,8 +457,8 @@ Mesh load_world(const WorldModel& world, Scene& scene) {
   if (!(world.metres_per_unit > 0) || !std::isfinite(world.metres_per_unit))
     fail(path, "metres per unit must be positive");
   if (world.classes.empty()) fail(path, "a world needs classes: name patterns and their classes");
-  const Reading reading{[&](const std::string& name) { return world_class(world, name); },
-                        world.z_up, true};
+  const Reading reading{[&](const Lineage& names) { return world_class(world, names); }, world.z_up,
+                        true};
   Material fallback;
   fallback.albedo = {0.5f, 0.5f, 0.5f};
   Mesh mesh = load_mesh(path, reading, scene, add_material(scene, fallback));
@@ -416,7 +476,7 @@ Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene
                 const Material& fallback, const Mat3& turn) {
   if (!fs::is_regular_file(path)) fail(path, "no such model file");
   if (!(length > 0)) fail(path, "model length must be positive");
-  const Reading reading{[cls](const std::string&) { return cls; }, false, false};
+  const Reading reading{[cls](const Lineage&) { return cls; }, false, false};
   Mesh mesh = load_mesh(path, reading, scene, add_material(scene, fallback));
   if (mesh.triangles.empty()) fail(path, "the model has no triangles");
   const Eigen::Matrix3f r = turn.cast<float>();
@@ -433,6 +493,40 @@ Mesh load_model(const std::string& path, SemanticClass cls, double length, Scene
   const Eigen::Vector3f centre((lo.x() + hi.x()) / 2, (lo.y() + hi.y()) / 2, lo.z());
   for (Eigen::Vector3f& v : mesh.vertices) v = (v - centre) * scale;
   return mesh;
+}
+
+std::vector<FileCamera> gltf_cameras(const std::string& path) {
+  if (!fs::is_regular_file(path)) fail(path, "no such glTF file");
+  const tinygltf::Model model = read_gltf(path);
+  const Mat3 ours_from_gltf = (Mat3() << 0, 0, 1, 1, 0, 0, 0, 1, 0).finished();  // from_y_up
+  const Mat3 gltf_camera_from_optical = Eigen::Vector3d(1, -1, -1).asDiagonal();
+  std::vector<FileCamera> cameras;
+  for_each_node(model, path,
+                [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform, const Lineage&) {
+                  if (node.camera < 0) return;
+                  if (node.camera >= int(model.cameras.size()))
+                    fail(path, "node " + node.name + " refers to a camera the file lacks");
+                  const tinygltf::Camera& camera = model.cameras[node.camera];
+                  const std::string name = node.name.empty() ? camera.name : node.name;
+                  if (camera.type != "perspective")
+                    fail(path, "camera " + name + " is " + camera.type +
+                                   ": only perspective cameras become rig cameras");
+                  const double yfov = camera.perspective.yfov * 180 / kPi;
+                  if (!(yfov > 0 && yfov < 180))
+                    fail(path, "camera " + name + ": yfov must be between 0 and 180 degrees");
+                  // the node's rotation, any scale taken out (polar decomposition)
+                  const Eigen::JacobiSVD<Mat3> svd(transform.topLeftCorner<3, 3>(),
+                                                   Eigen::ComputeFullU | Eigen::ComputeFullV);
+                  const Mat3 rotation = svd.matrixU() * svd.matrixV().transpose();
+                  if (!(rotation.determinant() > 0)) fail(path, "camera " + name + " is mirrored");
+                  FileCamera out{name, yfov, camera.perspective.aspectRatio, Pose::Identity()};
+                  out.pose.linear() = ours_from_gltf * rotation * gltf_camera_from_optical;
+                  out.pose.translation() = ours_from_gltf * transform.topRightCorner<3, 1>();
+                  if (!within_world(out.pose.translation()))
+                    fail(path, "camera " + name + " lies beyond 1,000 km of the origin");
+                  cameras.push_back(out);
+                });
+  return cameras;
 }
 
 }  // namespace flowscape

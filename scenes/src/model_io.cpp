@@ -144,21 +144,23 @@ void export_gltf(const Scene& scene, double t, const std::string& path) {
 std::vector<ExportedMesh> import_gltf(const std::string& path) {
   const tinygltf::Model model = read_gltf(path);
   std::vector<ExportedMesh> meshes;
-  for_each_node(model, path, [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform) {
-    if (node.mesh >= int(model.meshes.size()))
-      fail(path, "node " + node.name + " refers to a mesh the file lacks");
-    if (node.mesh < 0) return;
-    if (!node.extras.Has("class_id") || !node.extras.Has("instance"))
-      fail(path, "node " + node.name + " has no class_id / instance in its extras");
-    const int cls = node.extras.Get("class_id").GetNumberAsInt();
-    const int instance = node.extras.Get("instance").GetNumberAsInt();
-    if (cls < 0 || cls > 255 || instance < 0 || instance > 65535)
-      fail(path, "node " + node.name + " has an out-of-range class or instance");
-    if (meshes.empty() || meshes.back().instance != instance)
-      meshes.push_back({std::uint16_t(instance), {}});
-    append_gltf_mesh(model, model.meshes[node.mesh], transform, SemanticClass(cls), 0, path,
-                     meshes.back().mesh);
-  });
+  for_each_node(model, path,
+                [&](const tinygltf::Node& node, const Eigen::Matrix4d& transform,
+                    const std::vector<std::string>&) {
+                  if (node.mesh >= int(model.meshes.size()))
+                    fail(path, "node " + node.name + " refers to a mesh the file lacks");
+                  if (node.mesh < 0) return;
+                  if (!node.extras.Has("class_id") || !node.extras.Has("instance"))
+                    fail(path, "node " + node.name + " has no class_id / instance in its extras");
+                  const int cls = node.extras.Get("class_id").GetNumberAsInt();
+                  const int instance = node.extras.Get("instance").GetNumberAsInt();
+                  if (cls < 0 || cls > 255 || instance < 0 || instance > 65535)
+                    fail(path, "node " + node.name + " has an out-of-range class or instance");
+                  if (meshes.empty() || meshes.back().instance != instance)
+                    meshes.push_back({std::uint16_t(instance), {}});
+                  append_gltf_mesh(model, model.meshes[node.mesh], transform, SemanticClass(cls), 0,
+                                   path, meshes.back().mesh);
+                });
   return meshes;
 }
 

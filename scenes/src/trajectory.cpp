@@ -14,6 +14,11 @@ namespace flowscape {
 namespace {
 
 constexpr double kDegree = kPi / 180;
+// The least time between two waypoints or poses: closer ones would make the spline's slopes
+// overflow (waypoints 1e-300 s apart), and no tracker samples faster.
+constexpr double kShortestStep = 1e-6;
+// The largest pose file read: some 400,000 KITTI lines, a day of a 5 Hz tracker.
+constexpr std::uintmax_t kMaxPoseFileBytes = std::uintmax_t(1) << 26;
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
@@ -150,18 +155,26 @@ std::vector<TimedPose> colmap(std::istream& in, double rate) {
   bool points_line = false;
   for (int line = 1; std::getline(in, text); ++line) {
     if (!text.empty() && text[0] == '#') continue;
-    if (points_line) {  // empty for an image without points, as COLMAP writes it
+    std::istringstream words(text);
+    if (points_line) {  // X Y POINT3D_ID triples; empty for an image without points
       points_line = false;
+      std::size_t count = 0;
+      for (std::string word; words >> word;) ++count;
+      require(count % 3 == 0,
+              line_error(line,
+                         "not the line of 2-D points (X Y POINT3D_ID ...) that COLMAP "
+                         "writes after each image, an empty one for an image without "
+                         "points"));
       continue;
     }
     if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::istringstream words(text);
     double id, qw, qx, qy, qz, tx, ty, tz, camera;
     std::string name;
     require(bool(words >> id >> qw >> qx >> qy >> qz >> tx >> ty >> tz >> camera >> name),
             line_error(line, "a COLMAP image is: IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME"));
     const Pose world_to_camera = pose_of({tx, ty, tz}, {qw, qx, qy, qz}, line);
-    by_name[name] = world_to_camera.inverse();
+    require(by_name.emplace(name, world_to_camera.inverse()).second,
+            line_error(line, "image \"" + name + "\" is listed twice"));
     require_within_world(by_name[name], line);
     points_line = true;
   }
@@ -197,8 +210,8 @@ std::vector<double> waypoint_times(const std::vector<Waypoint>& waypoints) {
       require(w.time.has_value(), what + "give its time or the speed it is reached at");
       times.push_back(*w.time);
     }
-    require(std::isfinite(times.back()) && (k == 0 || times.back() > times[k - 1]),
-            what + "times must increase (a speed must move it)");
+    require(std::isfinite(times.back()) && (k == 0 || times.back() >= times[k - 1] + kShortestStep),
+            what + "times must increase by at least a microsecond (a speed must move it)");
   }
   return times;
 }
@@ -237,21 +250,47 @@ PoseFormat pose_format(const std::string& name) {
 
 std::vector<TimedPose> read_pose_file(const std::filesystem::path& file, PoseFormat format,
                                       double rate) {
-  std::istringstream in(read_file(file, 1u << 28));
+  require_regular_file(file, kMaxPoseFileBytes);
+  std::ifstream in(file, std::ios::binary);
   std::vector<TimedPose> poses;
   try {
     require(rate > 0 && std::isfinite(rate), "the pose rate must be positive");
     poses = format == PoseFormat::Colmap ? colmap(in, rate) : tum_or_kitti(in, format, rate);
     require(poses.size() >= 2, "fewer than 2 poses");
     for (std::size_t k = 1; k < poses.size(); ++k)
-      require(poses[k].time > poses[k - 1].time,
-              "times must increase (pose " + std::to_string(k) + ")");
+      require(poses[k].time >= poses[k - 1].time + kShortestStep,
+              "times must increase by at least a microsecond (pose " + std::to_string(k) + ")");
   } catch (const std::invalid_argument& e) {
     throw FileError(file, e.what());
   }
   const double start = poses.front().time;
   for (TimedPose& p : poses) p.time -= start;
   return poses;
+}
+
+Mat3 ours_from_file_world(const PoseWorld& world, const std::vector<TimedPose>& poses) {
+  if (world.frame == "z_up") return Mat3::Identity();
+  if (world.frame == "y_down") return (Mat3() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();
+  Vec3 up = world.up;
+  if (world.frame == "gravity") {
+    up = Vec3::Zero();
+    for (const TimedPose& p : poses) up -= p.pose.linear().col(1);
+  } else {
+    require(world.frame == "up", "world_frame \"" + world.frame +
+                                     "\" is not z_up, y_down, gravity or {\"up\": [x, y, z]}");
+  }
+  require(up.norm() > 1e-9, "world_frame: the up direction is zero");
+  up.normalize();
+  const Vec3 view = poses.front().pose.linear().col(2);
+  const Vec3 forward = view - view.dot(up) * up;  // the first camera's view on the ground
+  require(forward.norm() > 1e-6,
+          "world_frame: the first camera looks straight along the up "
+          "direction, so no forward is on the ground");
+  Mat3 rows;
+  rows.row(0) = forward.normalized().transpose();
+  rows.row(2) = up.transpose();
+  rows.row(1) = rows.row(2).cross(rows.row(0));  // left = up x forward
+  return rows;
 }
 
 PoseTrack interpolated_track(std::vector<TimedPose> poses) {

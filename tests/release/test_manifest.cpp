@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/sha256.h"
 #include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
-#include "flowscape/release/sha256.h"
 #include "flowscape/release/writer.h"
 #include "temp_dir.h"
 #include "tiny_release.h"

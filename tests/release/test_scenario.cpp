@@ -256,7 +256,8 @@ TEST_CASE(
     walk["motion"] = {{"pose_file", format == std::string("kitti") ? "kitti.txt" : "images.txt"},
                       {"format", format},
                       {"rate", 30},
-                      {"poses_of", "front"}};
+                      {"poses_of", "front"},
+                      {"world_frame", "z_up"}};  // the file's world as ours, whatever the format
     files.push_back(write_json(dir.path / (std::string(format) + ".json"), walk));
   }
 
@@ -385,4 +386,92 @@ TEST_CASE("a user's world with its classes, scripted actors and a frame rate of 
   bad = user;
   bad["frame_rate"] = 500;
   fails(bad, "\"frame_rate\" must be in 1..240");
+}
+
+TEST_CASE("a KITTI pose file drives the rig along its camera's view with the format's preset") {
+  TempDir dir;
+  // a KITTI camera (x right, y down, z forward) in its y-down world driving a left curve: its
+  // heading turns about the world's up, -y
+  std::ofstream kitti(dir.path / "00.txt");
+  std::vector<Pose> file_poses;
+  for (int k = 0; k < 12; ++k) {
+    const double heading = 0.05 * k;
+    Pose pose = Pose::Identity();
+    pose.linear() = Eigen::AngleAxisd(-heading, Vec3::UnitY()).toRotationMatrix();  // left turn
+    pose.translation() = Vec3(-std::sin(heading) * 4 * k, 0.02 * k, std::cos(heading) * 4 * k);
+    file_poses.push_back(pose);
+    for (int i = 0; i < 12; ++i)
+      kitti << (i ? " " : "") << std::setprecision(17) << pose.matrix()(i / 4, i % 4);
+    kitti << "\n";
+  }
+  kitti.close();
+  const nlohmann::json scenario = {{"flowscape_scenario", 1},
+                                   {"world", {{"map", 0}}},
+                                   {"motion", {{"pose_file", "00.txt"}, {"format", "kitti"}}},
+                                   {"frames", 20}};
+  const Scenario s = scenario_from_json(scenario, dir.path);
+  CHECK(s.path->poses_of == "camera_frame");
+  CHECK(s.path->world.frame == "y_down");
+  CHECK(to_json(scenario_from_json(to_json(s))) == to_json(s));  // recorded with its presets
+  const PoseTrack rig = rig_path_track(s, Rig{});
+  for (int k = 0; k < 12; ++k) {
+    INFO(k);
+    // the file's z (the camera's view) in our world, by the y-down world's axes: our x = its z,
+    // our y = -its x, our z = -its y
+    const Vec3 view = file_poses[k].linear().col(2), place = file_poses[k].translation();
+    const Vec3 expected_forward(view.z(), -view.x(), -view.y()),
+        expected_place(place.z(), -place.x(), -place.y());
+    const Pose at = rig(k / 10.0);                                 // KITTI's 10 Hz
+    CHECK((at.linear().col(0) - expected_forward).norm() < 1e-9);  // the rig's forward axis
+    CHECK((at.linear().col(2) - Vec3::UnitZ()).norm() < 1e-9);     // upright
+    CHECK((at.translation() - expected_place).norm() < 1e-9);
+  }
+  // the road turns left in our world: the heading grows counter-clockwise seen from above
+  CHECK(rig(1.1).linear().col(0).y() > 0);
+}
+
+TEST_CASE("a scenario's paths are its folder's, recorded absolute; its numbers exactly as given") {
+  TempDir dir;
+  fs::create_directories(dir.path / "scenarios" / "rigs");
+  std::ofstream(dir.path / "scenarios" / "rigs" / "front.json")
+      << R"({"name": "front", "cameras": [{"name": "front", "model": "pinhole",
+            "parameters": {"width": 32, "height": 24, "K": [[16, 0, 15.5], [0, 16, 11.5], [0, 0, 1]]},
+            "mount": {"position": [1, 0, 0], "yaw_pitch_roll_degrees": [0, 0, 0]}}]})";
+  const nlohmann::json scenario = {{"flowscape_scenario", 1},
+                                   {"world", {{"map", 1}, {"seed", 3}}},
+                                   {"rig", "rigs/front.json"},
+                                   {"frames", 4}};
+  const fs::path file = write_json(dir.path / "scenarios" / "s.json", scenario);
+  const fs::path elsewhere = fs::current_path();
+  fs::current_path(dir.path);  // run from another folder than the scenario's
+  const Scenario s = read_scenario(file);
+  fs::current_path(elsewhere);
+  CHECK(s.rig == (dir.path / "scenarios" / "rigs" / "front.json").string());
+  CHECK(fs::path(to_json(s).at("rig").get<std::string>()).is_absolute());
+
+  const auto refused = [&](const char* key, const nlohmann::json& value, const std::string& says) {
+    nlohmann::json bad = scenario;
+    bad.erase("rig");
+    if (std::string(key) == "seed")
+      bad["world"]["seed"] = value;
+    else if (std::string(key) == "vehicles")
+      bad["traffic"] = {{"vehicles", value}};
+    else if (std::string(key) == "units")
+      bad["world"] = {
+          {"file", "s.json"}, {"units", value}, {"up", "y"}, {"classes", {{"*", "Road"}}}};
+    else
+      bad[key] = value;
+    CHECK_THROWS_WITH(read_scenario(write_json(dir.path / "scenarios" / "bad.json", bad)),
+                      Catch::Contains("bad.json: scenario: ") && Catch::Contains(says));
+  };
+  refused("frames", 4294967298.0, "\"frames\" must be an integer (got 4294967298.0)");
+  refused("frames", 4294967298u, "\"frames\" 4294967298 is out of range (2..999999)");
+  refused("frames", 2.9, "\"frames\" must be an integer (got 2.9)");
+  refused("vehicles", 4294967297u, "traffic: \"vehicles\" 4294967297 is out of range (0..200)");
+  refused("seed", -1, "world: \"seed\" -1 is out of range");
+  refused("units", 1e-300, "world \"units\" must be 1e-6..1e6 metres per unit");
+  nlohmann::json far = scenario;
+  far["rig"] = "rigs/missing.json";
+  CHECK_THROWS_WITH(read_scenario(write_json(dir.path / "scenarios" / "far.json", far)),
+                    Catch::Contains("rigs/missing.json: no such rig file"));
 }

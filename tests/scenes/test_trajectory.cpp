@@ -153,3 +153,74 @@ TEST_CASE("TUM, KITTI and COLMAP pose files replay their poses at their times") 
                     Catch::Contains("back.txt: times must increase"));
   CHECK_THROWS_WITH(pose_format("euroc"), Catch::Contains("tum, kitti, colmap"));
 }
+
+TEST_CASE("hostile pose files and waypoints: one line each, with the file and line") {
+  TempDir dir;
+  const auto refused = [&](const std::string& name, const std::string& text, PoseFormat format,
+                           const std::string& says) {
+    std::ofstream(dir.path / name) << text;
+    CHECK_THROWS_WITH(read_pose_file(dir.path / name, format),
+                      Catch::Contains(name) && Catch::Contains(says));
+  };
+  // COLMAP writes a points line after every image, an empty one for an image without points:
+  // a file without them lost every second image
+  refused("nopoints.txt",
+          "1 1 0 0 0 0 0 0 1 a.png\n2 1 0 0 0 1 0 0 1 b.png\n3 1 0 0 0 2 0 0 1 c.png\n",
+          PoseFormat::Colmap, "line 2: not the line of 2-D points");
+  refused("twice.txt", "1 1 0 0 0 0 0 0 1 a.png\n\n2 1 0 0 0 1 0 0 1 a.png\n\n", PoseFormat::Colmap,
+          "line 3: image \"a.png\" is listed twice");
+  refused("close.txt", "0 0 0 0 0 0 0 1\n1e-300 1 0 0 0 0 0 1\n", PoseFormat::Tum,
+          "times must increase by at least a microsecond");
+  refused("far.txt", "0 1e308 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 1\n", PoseFormat::Tum,
+          "line 1: its position lies beyond 1,000 km");
+  std::filesystem::create_directories(dir.path / "folder.txt");
+  CHECK_THROWS_WITH(read_pose_file(dir.path / "folder.txt", PoseFormat::Tum),
+                    Catch::Contains("folder.txt: is a folder, expected a file"));
+  CHECK_THROWS_WITH(read_pose_file("/dev/zero", PoseFormat::Tum),
+                    Catch::Contains("/dev/zero: not a regular file"));
+  {  // 200 MB (sparse): refused before a byte is read
+    std::ofstream big(dir.path / "big.txt");
+    big.seekp(200 << 20);
+    big << "\n";
+  }
+  CHECK_THROWS_WITH(read_pose_file(dir.path / "big.txt", PoseFormat::Kitti),
+                    Catch::Contains("big.txt: too large: "));
+  const std::vector<Waypoint> close = {{{0, 0, 0}, 0.0, {}, {}}, {{1, 0, 0}, 1e-300, {}, {}}};
+  CHECK_THROWS_WITH(waypoint_times(close),
+                    Catch::Contains("waypoint 1: times must increase by at least a microsecond"));
+}
+
+TEST_CASE("a pose file's world turned into ours: KITTI's y-down world, COLMAP's by its gravity") {
+  // cameras upright on a road that turns: their up is the world's, each looking along the road
+  std::vector<TimedPose> upright;
+  const Mat3 tilt = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
+  for (int k = 0; k < 6; ++k) {
+    const double heading = 0.3 * k;  // about the world's up
+    // a camera frame (x right, y down, z forward) looking along `heading` in a z-up world
+    const Vec3 forward(std::cos(heading), std::sin(heading), 0), up(0, 0, 1);
+    Mat3 camera;
+    camera.col(2) = forward, camera.col(1) = -up, camera.col(0) = (-up).cross(forward);
+    Pose pose = Pose::Identity();
+    pose.linear() = tilt * camera;  // the reconstruction's arbitrary world
+    pose.translation() = tilt * Vec3(2 * k, 0.1 * k, 1.5);
+    upright.push_back({0.1 * k, pose});
+  }
+  const Mat3 gravity = ours_from_file_world({"gravity"}, upright);
+  for (const TimedPose& p : upright) {
+    const Mat3 ours = gravity * p.pose.linear();
+    CHECK((ours.col(1) - Vec3(0, 0, -1)).norm() < 1e-12);  // every camera's down is ours
+  }
+  // the first camera looks along our x
+  CHECK(((gravity * upright[0].pose.linear()).col(2) - Vec3::UnitX()).norm() < 1e-12);
+  // up given: the same turn
+  CHECK(ours_from_file_world({"up", tilt * Vec3::UnitZ()}, upright).isApprox(gravity, 1e-12));
+  // KITTI: x right, y down, z forward -> ours x forward, y left, z up
+  const Mat3 kitti = ours_from_file_world({"y_down"}, upright);
+  CHECK((kitti * Vec3::UnitZ() - Vec3::UnitX()).norm() == 0);
+  CHECK((kitti * Vec3::UnitX() + Vec3::UnitY()).norm() == 0);
+  CHECK((kitti * Vec3::UnitY() + Vec3::UnitZ()).norm() == 0);
+  CHECK(ours_from_file_world({"z_up"}, upright) == Mat3::Identity());
+  CHECK_THROWS_WITH(ours_from_file_world({"y_up"}, upright), Catch::Contains("\"y_up\" is not"));
+  CHECK_THROWS_WITH(ours_from_file_world({"up", upright[0].pose.linear().col(2)}, upright),
+                    Catch::Contains("looks straight along the up direction"));
+}

@@ -4,8 +4,11 @@
 // computed here from the documented convention (weather/src/sky_map.h), not by the code under test.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "flowscape/core/image.h"
+#include "flowscape/core/sha256.h"
 #include "flowscape/core/types.h"
 
 namespace flowscape::test {
@@ -47,6 +50,12 @@ inline Image<float> synthetic_sky(const SyntheticSky& s) {
 inline Eigen::Array3d synthetic_sun_irradiance(const SyntheticSky& s) {
   const double sigma2 = s.sun_sigma * s.sun_sigma;
   return s.sun_peak * 2 * kPi * sigma2 * (1 - sigma2 / 3) * s.sun_tint;
+}
+
+// Pins `file` in its folder's SHA256SUMS, as scripts/fetch_sky_maps.sh pins the maps it fetches.
+inline void pin(const std::filesystem::path& file) {
+  std::ofstream(file.parent_path() / "SHA256SUMS", std::ios::app)
+      << sha256_file(file) << "  " << file.filename().string() << "\n";
 }
 
 }  // namespace flowscape::test

@@ -129,6 +129,7 @@ TEST_CASE("under a sky map the weather takes the map's sun; a map not fetched le
   SyntheticSky s;
   s.sun = at_elevation(20, -60), s.sun_peak = 4000;
   write_image(folder.dir.path / "park.exr", test::synthetic_sky(s));
+  test::pin(folder.dir.path / "park.exr");
   const Weather sunny = weather_preset("sunny");
   const Weather w = under_sky(sunny, "park", 3);
   CHECK(w.sky_map == "park");
@@ -157,8 +158,29 @@ TEST_CASE("under a sky map the weather takes the map's sun; a map not fetched le
   CHECK_NOTHROW(check_sky_resolution("venice", 1000));  // not fetched: nothing to refuse
   // a broken map is a FileError naming it
   write_file(folder.dir.path / "dawn.exr", "not an exr");
+  test::pin(folder.dir.path / "dawn.exr");
   CHECK_THROWS_WITH(under_sky(sunny, "dawn", 3), Catch::Contains("dawn.exr"));
   write_image(folder.dir.path / "sunrise.exr", Image<float>(64, 64, 3));
+  test::pin(folder.dir.path / "sunrise.exr");
   CHECK_THROWS_WITH(under_sky(sunny, "sunrise", 3),
                     Catch::Contains("sunrise.exr") && Catch::Contains("twice as wide as high"));
+}
+
+TEST_CASE("a sky map is checked against its pinned sha256 whenever it is read") {
+  const SkyMapFolder folder;
+  const std::filesystem::path map = folder.dir.path / "sky.exr";
+  write_image(map, test::synthetic_sky({}));
+  const Weather sunny = weather_preset("sunny");
+  CHECK_THROWS_WITH(under_sky(sunny, "sky", 3),
+                    Catch::Contains("sky.exr: no SHA256SUMS beside it to check it against"));
+  test::pin(map);
+  CHECK(under_sky(sunny, "sky", 3).sky_map == "sky");
+  // one flipped bit, as a disk or a copy might leave it: refused, not a sun moved by 5 degrees
+  std::string bytes = file_bytes(map);
+  bytes[bytes.size() / 2] ^= 1;
+  write_file(folder.dir.path / "venice.exr", bytes);
+  std::ofstream(folder.dir.path / "SHA256SUMS", std::ios::app)
+      << sha256_file(map) << "  venice.exr\n";  // pinned as the whole map was
+  CHECK_THROWS_WITH(under_sky(sunny, "venice", 3), Catch::Contains("venice.exr: sha256 ") &&
+                                                       Catch::Contains("differs from the pinned"));
 }

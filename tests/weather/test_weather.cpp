@@ -114,6 +114,7 @@ TEST_CASE("a real HDR sky changes colour only") {
   test::SyntheticSky sky;
   sky.sun = Vec3(0.5, -0.3, 0.6).normalized(), sky.sun_peak = 3000;
   write_image(maps.path / "sky.exr", test::synthetic_sky(sky));
+  test::pin(maps.path / "sky.exr");
   const Weather sunny = weather_preset("sunny"), mapped = under_sky(sunny, "sky", 2);
   REQUIRE(mapped.sky_map == "sky");
   const WeatherFrame physical = render_city(sunny), real = render_city(mapped);

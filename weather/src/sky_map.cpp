@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "flowscape/core/files.h"
+#include "flowscape/core/sha256.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/weather/weather.h"
 
@@ -175,9 +176,10 @@ std::shared_ptr<const SkyMap> fetched_sky_map(const std::string& name) {
   const std::lock_guard<std::mutex> lock(mutex);
   if (const auto known = maps.find(file); known != maps.end()) return known->second;
   std::shared_ptr<const SkyMap> map;
-  if (std::filesystem::exists(file))
+  if (std::filesystem::exists(file)) {
+    require_pinned(file);  // a damaged map would move its sun without a word
     map = std::make_shared<const SkyMap>(read_sky_map(name, file.string()));
-  else
+  } else
     std::fprintf(diagnostics(),
                  "warning: sky map \"%s\" not fetched (%s): the physical sky stands in "
                  "(scripts/fetch_sky_maps.sh fetches the maps)\n",

@@ -21,9 +21,11 @@ T json_integer(const nlohmann::json& value, const std::string& key,
   if (value.is_number_unsigned()) {
     const auto v = value.get<std::uint64_t>();
     fits = (lo <= T(0) || v >= std::uint64_t(lo)) && v <= std::uint64_t(hi);
+  } else if (const auto v = value.get<std::int64_t>(); v >= 0) {  // stored signed, as C++ ints
+    fits = (lo <= T(0) || std::uint64_t(v) >= std::uint64_t(lo)) &&
+           std::uint64_t(v) <= std::uint64_t(hi);
   } else {
-    const auto v = value.get<std::int64_t>();
-    fits = std::is_signed_v<T> && v >= std::int64_t(lo) && v <= std::int64_t(hi);
+    fits = std::is_signed_v<T> && v >= std::int64_t(lo);
   }
   if (!fits)
     throw std::invalid_argument(name + value.dump() + " is out of range (" + std::to_string(lo) +

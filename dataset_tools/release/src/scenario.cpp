@@ -9,11 +9,16 @@
 #include "flowscape/core/names.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/meta.h"
+#include "flowscape/renderer/calibration_file.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
+#include "json_integer.h"
 
 namespace flowscape {
 namespace {
+
+// poses_of for a pose file of a camera's frames looking along the rig's forward axis.
+constexpr const char* kCameraFramePoses = "camera_frame";
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("scenario: " + what);
@@ -35,6 +40,18 @@ T value(const nlohmann::json& object, const char* key, T fallback, const std::st
     return object.at(key).get<T>();
   } catch (const nlohmann::json::exception&) {
     throw std::invalid_argument("scenario: " + where + "\"" + key + "\" has the wrong type");
+  }
+}
+
+// A whole number in lo..hi, exactly: no fraction truncated, nothing wrapped.
+template <class T>
+T integer(const nlohmann::json& object, const char* key, T fallback, T lo, T hi,
+          const std::string& where) {
+  if (!object.contains(key)) return fallback;
+  try {
+    return json_integer<T>(object.at(key), key, lo, hi);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("scenario: " + where + e.what());
   }
 }
 
@@ -111,11 +128,15 @@ nlohmann::json waypoints_json(const std::vector<Waypoint>& waypoints) {
 }
 
 // A file a scenario names, relative to its folder, made absolute (so that the scenario a meta.json
-// records finds it from anywhere); a FileError "no such <what>" when it is not there.
+// records finds it from anywhere); a FileError "no such <what>" when it is not there, and says so
+// for a folder or a device.
 std::filesystem::path existing_file(const std::filesystem::path& base, const std::string& file,
                                     const std::string& what) {
-  const std::filesystem::path path = std::filesystem::absolute(base / file);
-  if (!std::filesystem::is_regular_file(path)) throw FileError(path, "no such " + what);
+  const std::filesystem::path path = std::filesystem::absolute(base / file).lexically_normal();
+  if (!std::filesystem::exists(path)) throw FileError(path, "no such " + what);
+  if (std::filesystem::is_directory(path)) throw FileError(path, "is a folder, expected a " + what);
+  if (!std::filesystem::is_regular_file(path))
+    throw FileError(path, "not a regular file, expected a " + what);
   return path;
 }
 
@@ -128,7 +149,8 @@ double metres_per_unit(const nlohmann::json& units) {
                                                        {"inches", 0.0254}};
   if (units.is_number()) {
     const double metres = units.get<double>();
-    require(metres > 0 && std::isfinite(metres), "world \"units\" must be positive");
+    require(metres >= 1e-6 && metres <= 1e6,
+            "world \"units\" must be 1e-6..1e6 metres per unit (a micrometre to 1,000 km)");
     return metres;
   }
   const std::string name = units.is_string() ? units.get<std::string>() : "";
@@ -165,7 +187,8 @@ std::vector<WorldClass> world_classes(const nlohmann::json& list) {
 // {"map", "seed"} | {"file", "units", "up", "classes", "seed"}
 void world_from_json(const nlohmann::json& world, const std::filesystem::path& base, Scenario& s) {
   require_known(world, {"map", "seed", "file", "units", "up", "classes"}, "world: ");
-  s.seed = value<std::uint64_t>(world, "seed", 0, "world: ");
+  s.seed = integer<std::uint64_t>(world, "seed", 0, 0, std::numeric_limits<std::uint64_t>::max(),
+                                  "world: ");
   if (!world.contains("file")) {
     require(!world.contains("units") && !world.contains("up") && !world.contains("classes"),
             "world: \"units\", \"up\" and \"classes\" are a world file's");
@@ -250,6 +273,21 @@ nlohmann::json actors_json(const std::vector<ScriptedActor>& actors) {
   return list;
 }
 
+// "z_up" | "y_down" | "gravity" | {"up": [x, y, z]} (trajectory.h's PoseWorld)
+PoseWorld world_frame_from_json(const nlohmann::json& j) {
+  if (j.is_object()) {
+    require_known(j, {"up"}, "motion world_frame: ");
+    require(j.contains("up"), "motion \"world_frame\": {\"up\": [x, y, z]} in the file's world");
+    const Vec3 up = vector3(j.at("up"), "motion world_frame up");
+    require(up.norm() > 1e-9, "motion world_frame up must not be zero");
+    return {"up", up};
+  }
+  const std::string frame = j.is_string() ? j.get<std::string>() : "";
+  require(frame == "z_up" || frame == "y_down" || frame == "gravity",
+          "motion \"world_frame\" must be z_up, y_down, gravity or {\"up\": [x, y, z]}");
+  return {frame, Vec3::UnitZ()};
+}
+
 void origin_from_json(const nlohmann::json& j, RigPath& path) {
   require_known(j, {"position", "yaw_pitch_roll_degrees"}, "motion origin: ");
   if (j.contains("position")) {
@@ -263,10 +301,10 @@ void origin_from_json(const nlohmann::json& j, RigPath& path) {
 
 // {"route": ...} | {"waypoints": [...]} | {"pose_file", "format", "rate", "poses_of", "origin"}
 void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base, Scenario& s) {
-  require_known(
-      j,
-      {"route", "lane_change_at", "waypoints", "pose_file", "format", "rate", "poses_of", "origin"},
-      "motion: ");
+  require_known(j,
+                {"route", "lane_change_at", "waypoints", "pose_file", "format", "rate", "poses_of",
+                 "world_frame", "origin"},
+                "motion: ");
   const int kinds =
       int(j.contains("route")) + int(j.contains("waypoints")) + int(j.contains("pose_file"));
   require(kinds == 1,
@@ -293,17 +331,23 @@ void motion_from_json(const nlohmann::json& j, const std::filesystem::path& base
     const std::string file = value<std::string>(j, "pose_file", "", "motion: ");
     path.format = value<std::string>(j, "format", "tum", "motion: ");
     path.rate = value<double>(j, "rate", 10.0, "motion: ");
-    path.poses_of = value<std::string>(j, "poses_of", "rig", "motion: ");
     try {
       pose_format(path.format);
     } catch (const std::invalid_argument& e) {
       require(false, std::string("motion: ") + e.what());
     }
+    const bool tum = path.format == "tum";
+    path.poses_of = value<std::string>(j, "poses_of", tum ? "rig" : kCameraFramePoses, "motion: ");
+    path.world = world_frame_from_json(
+        j.value("world_frame", nlohmann::json(tum                      ? "z_up"
+                                              : path.format == "kitti" ? "y_down"
+                                                                       : "gravity")));
     require(path.rate > 0 && std::isfinite(path.rate), "motion \"rate\" must be positive");
     path.pose_file = existing_file(base, file, "pose file");
     if (j.contains("origin")) origin_from_json(j.at("origin"), path);
   }
-  require(!j.contains("origin") || !path.pose_file.empty(), "motion \"origin\" is for a pose file");
+  require((!j.contains("origin") && !j.contains("world_frame")) || !path.pose_file.empty(),
+          "motion \"origin\" and \"world_frame\" are a pose file's");
   s.path = std::move(path);
 }
 
@@ -312,10 +356,13 @@ nlohmann::json motion_json(const Scenario& s) {
     return {{"route", s.route}, {"lane_change_at", s.lane_change_at}};
   if (!s.path) return {{"route", s.route}};
   if (s.path->pose_file.empty()) return {{"waypoints", waypoints_json(s.path->waypoints)}};
+  const PoseWorld& world = s.path->world;
   return {{"pose_file", s.path->pose_file.string()},
           {"format", s.path->format},
           {"rate", s.path->rate},
           {"poses_of", s.path->poses_of},
+          {"world_frame", world.frame == "up" ? nlohmann::json{{"up", array3(world.up)}}
+                                              : nlohmann::json(world.frame)},
           {"origin",
            {{"position", array3(s.path->origin_position)},
             {"yaw_pitch_roll_degrees", array3(s.path->origin_yaw_pitch_roll_degrees)}}}};
@@ -363,6 +410,8 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   s.generator = value<std::string>(j, "generator", "", "");
   world_from_json(j.value("world", nlohmann::json::object()), base, s);
   s.rig = value<std::string>(j, "rig", s.rig, "");
+  if (s.rig.ends_with(".json") || is_calibration_file(s.rig))  // a file beside the scenario
+    s.rig = existing_file(base, s.rig, "rig file").string();
   s.rig_mount = value<std::vector<double>>(j, "rig_mount", {}, "");
   s.ego = value<std::string>(j, "ego", s.ego, "");
   require(s.ego == "auto" || s.ego == "on" || s.ego == "off", "\"ego\" must be auto, on or off");
@@ -375,8 +424,8 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
           "\"pose_file\" in \"motion\"");
   const nlohmann::json traffic = j.value("traffic", nlohmann::json::object());
   require_known(traffic, {"vehicles", "pedestrians"}, "traffic: ");
-  s.vehicles = value<int>(traffic, "vehicles", s.vehicles, "traffic: ");
-  s.pedestrians = value<int>(traffic, "pedestrians", s.pedestrians, "traffic: ");
+  s.vehicles = integer(traffic, "vehicles", s.vehicles, 0, 200, "traffic: ");
+  s.pedestrians = integer(traffic, "pedestrians", s.pedestrians, 0, 200, "traffic: ");
   require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
           "traffic: vehicles + pedestrians must be in 0..200");
   require(!s.world_file || s.vehicles + s.pedestrians == 0,
@@ -417,7 +466,7 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   } catch (const std::invalid_argument& e) {
     require(false, e.what());
   }
-  s.frames = value<int>(j, "frames", s.frames, "");
+  s.frames = integer(j, "frames", s.frames, 2, 999999, "");
   require(s.frames >= 2 && s.frames <= 999999, "\"frames\" must be in 2..999999");
   s.frame_rate = value<double>(j, "frame_rate", s.frame_rate, "");
   require(s.frame_rate >= 1 && s.frame_rate <= 240, "\"frame_rate\" must be in 1..240");
@@ -526,17 +575,26 @@ PoseTrack rig_path_track(const Scenario& s, const Rig& rig) {
                                            " s; " + std::to_string(s.frames) + " frames need " +
                                            std::to_string(needed) + " s");
   Pose camera_to_rig = Pose::Identity();
-  if (s.path->poses_of != "rig") {
+  if (s.path->poses_of == kCameraFramePoses) {
+    camera_to_rig.linear() = look(0, 0, 0);
+  } else if (s.path->poses_of != "rig") {
     const auto camera =
         std::find_if(rig.cameras.begin(), rig.cameras.end(),
                      [&](const RigCamera& c) { return c.name == s.path->poses_of; });
     require(camera != rig.cameras.end(), "motion \"poses_of\": the rig has no camera \"" +
-                                             s.path->poses_of + "\" (\"rig\" or a camera's name)");
+                                             s.path->poses_of +
+                                             "\" (\"rig\", \"camera_frame\" or a camera's name)");
     camera_to_rig = camera->mount();
   }
-  return [track = interpolated_track(poses), origin = s.path->origin(),
+  Pose world = Pose::Identity();
+  try {
+    world.linear() = ours_from_file_world(s.path->world, poses);
+  } catch (const std::invalid_argument& e) {
+    throw FileError(s.path->pose_file, e.what());
+  }
+  return [track = interpolated_track(poses), placed = s.path->origin() * world,
           rig_from_camera = camera_to_rig.inverse()](double t) {
-    return origin * track(t) * rig_from_camera;
+    return placed * track(t) * rig_from_camera;
   };
 }
 

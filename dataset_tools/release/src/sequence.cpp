@@ -6,6 +6,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
+#include <utility>
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/profile.h"
@@ -18,6 +20,7 @@
 #include "flowscape/renderer/neural_denoise.h"
 #include "flowscape/renderer/ray_kernels.h"
 #include "flowscape/scenes/actors.h"
+#include "flowscape/scenes/model_io.h"
 
 namespace flowscape {
 
@@ -241,6 +244,25 @@ nlohmann::json rig_views_json(const Rig& rig) {
 }
 
 }  // namespace
+
+void check_user_files(const ReleaseConfig& config) {
+  std::set<std::string> read;
+  const auto check = [&](const std::string& file, const auto& load) {
+    if (!file.empty() && read.insert(file).second) load();
+  };
+  bool maps_checked = false;  // the maps' sequences share the release's models
+  for (const SequencePlan& plan : shard_plans(config)) {
+    if (plan.scenario_file.empty() && std::exchange(maps_checked, true)) continue;
+    const SequenceSpec spec = sequence_spec(config, plan);
+    Scene scratch;
+    if (spec.world) check(spec.world->path, [&] { load_world(*spec.world, scratch); });
+    std::vector<std::string> models;
+    for (const auto& [kind, file] : spec.models) models.push_back(file);
+    for (const ScriptedActor& actor : spec.scripted) models.push_back(actor.model);
+    for (const std::string& file : models)
+      check(file, [&] { load_model(file, SemanticClass::Vehicles, 4, scratch); });
+  }
+}
 
 SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
                            const ReleaseConfig& config) {

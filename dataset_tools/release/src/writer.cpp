@@ -482,6 +482,7 @@ ReleaseWritten write_release(const ReleaseConfig& config, const fs::path& out, b
   if (fs::exists(out) && !fs::is_directory(out))
     throw FileError(out, "is a file, not a folder: a release needs a folder");
   if (config.shards == 1) remove_temporary_files(out);
+  check_user_files(config);  // a bad world or model named before anything is written
   claim_release(config, out, force);
   const std::vector<SequencePlan> mine = shard_plans(config);
   Progress progress("gen_flowscape", mine.size() * std::size_t(config.frames), "frames");

@@ -38,6 +38,8 @@ void write_atomically(const std::filesystem::path& path,
 // The bytes of a regular file, refusing folders, missing files and files over `max_bytes`, each
 // with a FileError naming it.
 std::string read_file(const std::filesystem::path& path, std::uintmax_t max_bytes = 1u << 30);
+// The same checks without reading it (for a reader that streams the file); returns its size.
+std::uintmax_t require_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes);
 
 // The temporary name write_file uses for `path`: hidden, same folder, same extension, with the
 // process id (".partial-<pid>-name.ext").

@@ -25,6 +25,8 @@ struct Rig {
 };
 
 inline constexpr const char* kFlowscapeRig = "flowscape";
+// The most cameras a rig file or calibration may hold (each writes a folder of every kind).
+inline constexpr std::size_t kMaxRigCameras = 16;
 // Rig presets besides flowscape: "fisheye", "woodscape", "pal", "dual-fisheye".
 std::vector<std::string> rig_presets();
 // A preset's cameras, their images scaled to `size` (the release's ERP height): fisheye and pal

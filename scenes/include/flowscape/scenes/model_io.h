@@ -37,6 +37,19 @@ struct WorldModel {
 // animation or a skin is an error naming the file.
 Mesh load_world(const WorldModel& world, Scene& scene);
 
+// A glTF file's perspective camera (a rig from a 3-D tool's scene: --rig-from scene.gltf): its
+// node's name, vertical field of view, aspect ratio (width / height; 0 where the file gives none)
+// and pose, its optical frame (x right, y down, z forward; glTF's cameras look along their -z,
+// y up) -> the file's world in our axes (x forward, y left, z up), in the file's units.
+struct FileCamera {
+  std::string name;
+  double yfov_degrees = 0, aspect_ratio = 0;
+  Pose pose = Pose::Identity();
+};
+// Every camera node of the default scene, in the order the walk meets them. An orthographic
+// camera or a field of view outside (0, 180) degrees is an error naming the file and node.
+std::vector<FileCamera> gltf_cameras(const std::string& path);
+
 // What turns TORCS's cars forward: read y-up, their length lies along y (their nose at -y).
 inline const Mat3 kTorcsTurn = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
 

@@ -53,6 +53,20 @@ PoseFormat pose_format(const std::string& name);  // "tum", "kitti", "colmap"
 std::vector<TimedPose> read_pose_file(const std::filesystem::path& file, PoseFormat format,
                                       double rate = 10);
 
+// How a pose file's world lies in ours (x and y on the ground, z up), for poses of camera frames
+// (x right, y down, z forward): "z_up" (as it is: TUM's motion-capture and EuRoC's worlds),
+// "y_down" (a camera's own frame: KITTI's world is its first camera's, x right, y down, z
+// forward), "gravity" (up the mean of every camera's up, -y of its frame, as a COLMAP
+// reconstruction of a camera held or driven upright has it; forward the first camera's view), or
+// "up" with the file's up direction given (forward the first camera's view).
+struct PoseWorld {
+  std::string frame = "z_up";
+  Vec3 up = Vec3::UnitZ();  // for "up": in the file's world
+};
+// The rotation from the file's world to ours. Throws std::invalid_argument naming the frame: an
+// unknown one, an up that is zero or along the first camera's view.
+Mat3 ours_from_file_world(const PoseWorld& world, const std::vector<TimedPose>& poses);
+
 // The poses between their times: positions linearly, rotations by slerp (C0: the file's own
 // samples, nothing invented between them); before the first and after the last, the end poses.
 PoseTrack interpolated_track(std::vector<TimedPose> poses);

@@ -25,10 +25,17 @@ inline constexpr int kScenarioSchema = 1;
 struct RigPath {
   std::vector<Waypoint> waypoints;  // or a pose file:
   std::filesystem::path pose_file;
-  std::string format = "tum";    // trajectory.h's pose_format
-  double rate = 10;              // poses per second of KITTI and COLMAP files
-  std::string poses_of = "rig";  // "rig" (x forward, y left, z up) or a camera of the rig
-  // the file's world in the map's: its origin's position and turn (rig.h's yaw, pitch, roll)
+  std::string format = "tum";  // trajectory.h's pose_format
+  double rate = 10;            // poses per second of KITTI and COLMAP files
+  // Whose poses the file holds: "rig" (x forward, y left, z up), "camera_frame" (a camera's x
+  // right, y down, z forward, looking along the rig's x from its origin) or a camera of the rig.
+  // Unless given, the format's: rig for tum, camera_frame for kitti and colmap.
+  std::string poses_of;
+  // How the file's world lies in ours (trajectory.h); unless given, the format's: z_up for tum,
+  // y_down for kitti, gravity for colmap.
+  PoseWorld world;
+  // the file's world, turned into ours, placed in the map's: its origin's position and turn
+  // (rig.h's yaw, pitch, roll)
   Vec3 origin_position = Vec3::Zero(), origin_yaw_pitch_roll_degrees = Vec3::Zero();
   Pose origin() const;
 };

@@ -43,6 +43,10 @@ struct SequenceSpec {
 // The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
 // start follows from its seed, its route from the plan's `turns` or the scenario file).
 SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan);
+// Reads every user file this shard's sequences load when they are made (scenario worlds, actor
+// models, scripted actors' models) into a scratch scene, each once, so that a bad one is named
+// (a FileError) before a release writes anything.
+void check_user_files(const ReleaseConfig& config);
 // The spec of a scenario (scenario.h) in a release made with `config` (its rig, frames, models,
 // actors); `source` names the scenario's file in errors.
 struct Scenario;

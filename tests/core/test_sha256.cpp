@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "flowscape/release/sha256.h"
+#include "flowscape/core/sha256.h"
 
 using namespace flowscape;
 

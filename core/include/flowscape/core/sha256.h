@@ -1,5 +1,6 @@
 #pragma once
-// SHA-256 (FIPS 180-4) of bytes and files, as lowercase hex, for release manifests. None of the
+// SHA-256 (FIPS 180-4) of bytes and files, as lowercase hex: release manifests, and the fetched
+// data (sky maps, weights) checked against their pinned hashes when loaded. None of the
 // project's libraries offers it, so it is written here; tests check it against NIST's vectors and
 // Python's hashlib.
 #include <cstdint>
@@ -25,5 +26,10 @@ class Sha256 {
 
 std::string sha256_hex(std::string_view bytes);
 std::string sha256_file(const std::filesystem::path& path);  // throws FileError
+
+// A fetched file checked against the sha256 its folder's SHA256SUMS pins (sha256sum's format,
+// written by the script that fetched it: scripts/npm_fetch.sh), whenever it is read: a FileError
+// naming the file when it differs (damaged since), or when the folder pins nothing for it.
+void require_pinned(const std::filesystem::path& file);
 
 }  // namespace flowscape

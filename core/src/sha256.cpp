@@ -1,7 +1,8 @@
-#include "flowscape/release/sha256.h"
+#include "flowscape/core/sha256.h"
 
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "flowscape/core/files.h"
@@ -93,6 +94,28 @@ std::string sha256_file(const std::filesystem::path& path) {
   }
   if (in.bad()) throw FileError(path, "read error");
   return hash.hex();
+}
+
+}  // namespace flowscape
+
+namespace flowscape {
+
+void require_pinned(const std::filesystem::path& file) {
+  const std::filesystem::path sums = file.parent_path() / "SHA256SUMS";
+  const std::string refetch = " (scripts/install_deps.sh fetches it again)";
+  if (!std::filesystem::is_regular_file(sums))
+    throw FileError(file, "no SHA256SUMS beside it to check it against" + refetch);
+  std::istringstream lines(read_file(sums, 1u << 20));
+  for (std::string line; std::getline(lines, line);) {
+    const std::size_t gap = line.find("  ");
+    if (gap == std::string::npos || line.substr(gap + 2) != file.filename().string()) continue;
+    const std::string pinned = line.substr(0, gap), actual = sha256_file(file);
+    if (actual != pinned)
+      throw FileError(file, "sha256 " + actual + " differs from the pinned " + pinned +
+                                ": damaged since it was fetched" + refetch);
+    return;
+  }
+  throw FileError(file, "SHA256SUMS beside it pins no such file" + refetch);
 }
 
 }  // namespace flowscape
