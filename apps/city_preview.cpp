@@ -14,11 +14,12 @@
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/gallery.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/renderer/calibration_file.h"
+#include "flowscape/renderer/denoiser.h"
 #include "flowscape/scenes/model_io.h"
 #include "tracing_cli.h"
 
@@ -188,7 +189,7 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     for (const std::string& warning : calibration_warnings(rig))
       std::fprintf(diagnostics(), "city_preview: %s: warning: %s\n", config.rig.c_str(),
                    warning.c_str());
-  if (rig.cameras.empty()) {
+  if (rig.flowscape) {
     std::vector<std::vector<Image<std::uint8_t>>> rows{render_row(o, map, "sunny")};
     label_tile(rows[0][0], rig_name + " erp, " + map_name(map) + " sunny");
     return rows;
@@ -236,7 +237,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--denoise", o.color.denoise,
                  "atrous (as a release), oidn (OIDN's U-Net) or none: the raw path tracer")
-      ->check(CLI::IsMember({"atrous", "oidn", "none"}))
+      ->check(CLI::IsMember(kDenoiserNames))
       ->capture_default_str();
   app.add_option("--seed", o.seed, "sequence seed (city, traffic, weather variant, noise)");
   app.add_option("--vehicles", o.vehicles, "vehicles per map")->check(CLI::Range(0, 200));

@@ -9,10 +9,10 @@
 #include "flowscape/core/progress.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
-#include "flowscape/release/preview.h"
-#include "flowscape/release/split.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/layout/preview.h"
+#include "flowscape/layout/split.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;

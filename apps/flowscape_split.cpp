@@ -6,8 +6,8 @@
 
 #include "cli.h"
 #include "flowscape/core/files.h"
-#include "flowscape/release/meta.h"
-#include "flowscape/release/split.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/layout/split.h"
 
 using namespace flowscape;
 

@@ -7,7 +7,7 @@
 
 #include "cli.h"
 #include "flowscape/core/files.h"
-#include "flowscape/release/stitch_folder.h"
+#include "flowscape/layout/stitch_folder.h"
 
 using namespace flowscape;
 

@@ -6,9 +6,9 @@
 #include <map>
 
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
-#include "flowscape/release/split.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/layout/split.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;

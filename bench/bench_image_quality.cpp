@@ -119,10 +119,9 @@ int main(int argc, char** argv) {
   std::printf("  (the averaged sky's bias: 0.11's converged colour against this one's)\n");
   const std::vector<double>& d = table.back();
   std::printf(
-      "  release default (%d spp, %d indirect, %s %s): worst %.1f dB (target >= 40 dB), "
+      "  release default (%d spp, %d indirect, %s): worst %.1f dB (target >= 40 dB), "
       "%.2fx the baseline's time (target <= 0.5x)\n",
-      defaults.spp, indirect_samples(defaults), defaults.denoise.c_str(),
-      defaults.denoise == "oidn" ? defaults.denoise_model.c_str() : "",
+      defaults.spp, indirect_samples(defaults), release_denoiser(defaults)->description().c_str(),
       *std::min_element(d.begin(), d.end()), seconds["release default"] / baseline);
   // the release default per time of day (sunny): noise at the sequence's exposure and cost
   std::printf("\n  %-30s %12s %12s %9s %12s %10s %12s\n", "release default, sunny", "rel. MSE",

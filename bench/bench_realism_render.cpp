@@ -17,8 +17,8 @@
 
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/config.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/scenes/actors.h"
 

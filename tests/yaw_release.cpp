@@ -7,10 +7,10 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/dataset_card.h"
-#include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/test_scenes.h"
 

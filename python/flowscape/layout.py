@@ -1,5 +1,5 @@
 """Where the files of a FlowScape release are: read from the "layout" that gen_flowscape writes
-into manifest.json (the C++ table of output kinds, dataset_tools/release/layout.h), so the plugin
+into manifest.json (the C++ table of output kinds, dataset_tools/layout/layout.h), so the plugin
 spells no path of its own."""
 import json
 import os

@@ -494,8 +494,9 @@ std::vector<RigCamera> gltf_rig_cameras(const std::filesystem::path& file,
     const double focal = height / 2.0 / std::tan(c.yfov_degrees * kDegree / 2);
     const nlohmann::json p =
         sized(width, height, k_matrix(focal, focal, (width - 1) / 2.0, (height - 1) / 2.0));
-    std::string name = camera_name(c.name, k);
-    if (!names.insert(name).second) names.insert(name += "_" + std::to_string(k));
+    const std::string base = camera_name(c.name, k);
+    const std::string name = names.count(base) ? base + "_" + std::to_string(k) : base;
+    names.insert(name);
     cameras.push_back(mounted(name, make_lens("pinhole", p), rig_from_first * c.pose));
   }
   return cameras;

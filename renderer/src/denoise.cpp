@@ -158,7 +158,7 @@ Image<float> denoise(const ColorLayers& layers, const DenoiseGuide& guide,
                                       arriving(layers.indirect, layers, 1, true),
                                       arriving(layers.specular, layers, 2, false)},
       next = light;
-  const bool wraps = camera.kind == Projection::Kind::Equirectangular;
+  const bool wraps = camera.wraps_around();
   const int levels = *std::max_element(options.levels, options.levels + kFiltered);
   for (int level = 0; level < levels; ++level) {
     filter_level(f, W, H, wraps, level, options, light, next);

@@ -22,6 +22,23 @@ Projection Projection::of_lens(std::shared_ptr<const Lens> lens, const Mat3& cam
   return {Kind::Lens, W, H, camera_to_rig, 0, std::move(lens)};
 }
 
+bool Projection::rectilinear() const {
+  return kind == Kind::Pinhole || (kind == Kind::Lens && lens->model() == "pinhole");
+}
+
+std::string Projection::model() const {
+  if (kind == Kind::Lens) return lens->model();
+  return kind == Kind::Equirectangular ? "equirectangular" : "pinhole";
+}
+
+nlohmann::json Projection::parameters() const {
+  if (kind == Kind::Lens) return lens->parameters();
+  if (kind == Kind::Equirectangular) return {{"height", height}};
+  return {{"width", width},
+          {"height", height},
+          {"K", {{focal, 0, width / 2.0 - 0.5}, {0, focal, height / 2.0 - 0.5}, {0, 0, 1}}}};
+}
+
 bool Projection::covers(Vec2 pixel) const {
   return kind != Kind::Lens || lens->ray(pixel).has_value();
 }

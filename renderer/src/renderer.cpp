@@ -185,7 +185,7 @@ TargetTruth trace_target(const TruthContext& c, int k, const Hit& hit, const Vec
     return truth;
   }
   double u = projected->x() - pixel.x();
-  if (c.projection.kind == Projection::Kind::Equirectangular)
+  if (c.projection.wraps_around())
     u = erp_flow_u(wrap_360(u, c.projection.width), pixel.x(), c.projection.width, c.mode);
   truth.u = float(u), truth.v = float(projected->y() - pixel.y());
   return truth;

@@ -148,6 +148,21 @@ Pose RigCamera::mount() const {
   return pose;
 }
 
+std::vector<Vec3> Rig::optical_centres() const {
+  if (flowscape) return {cameras.front().position};
+  std::vector<Vec3> centres;
+  for (const RigCamera& camera : cameras) centres.push_back(camera.position);
+  return centres;
+}
+
+Rig flowscape_rig(int height, int face_size) {
+  Rig rig{kFlowscapeRig, {{"erp", Projection::equirectangular(height)}}, true};
+  if (face_size > 0)
+    for (Face face : kFaces)
+      rig.cameras.push_back({std::string(face_name(face)), Projection::cube_face(face, face_size)});
+  return rig;
+}
+
 Mat3 look(double yaw_degrees, double pitch_degrees, double roll_degrees) {
   Mat3 forward;  // camera x right = rig -y, y down = rig -z, z forward = rig x
   forward << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -201,7 +216,7 @@ Rig scaled_rig(const Rig& rig, double scale) {
   Rig scaled = rig;
   for (RigCamera& camera : scaled.cameras) {
     const Mat3 rotation = camera.projection.rotation;
-    if (camera.projection.kind == Projection::Kind::Equirectangular) {
+    if (camera.projection.wraps_around()) {
       const int height = int(std::lround(camera.projection.height * scale));
       require(height >= 2, "camera \"" + camera.name + "\": a scale of " + std::to_string(scale) +
                                " leaves its panorama under 2 pixels high");
@@ -221,13 +236,11 @@ Rig scaled_rig(const Rig& rig, double scale) {
 nlohmann::json to_json(const Rig& rig) {
   nlohmann::json cameras = nlohmann::json::array();
   for (const RigCamera& c : rig.cameras) {
-    const bool erp = c.projection.kind == Projection::Kind::Equirectangular;
     nlohmann::json mount = {{"position", {c.position.x(), c.position.y(), c.position.z()}}};
-    if (!erp) mount["camera_to_rig"] = rows(c.projection.rotation);
+    if (!c.projection.wraps_around()) mount["camera_to_rig"] = rows(c.projection.rotation);
     cameras.push_back({{"name", c.name},
-                       {"model", erp ? "equirectangular" : c.projection.lens->model()},
-                       {"parameters", erp ? nlohmann::json{{"height", c.projection.height}}
-                                          : c.projection.lens->parameters()},
+                       {"model", c.projection.model()},
+                       {"parameters", c.projection.parameters()},
                        {"mount", mount}});
     if (!c.readout.global())
       cameras.back()["rolling_shutter"] = {{"readout_ms", c.readout.seconds * 1000},

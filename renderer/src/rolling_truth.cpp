@@ -191,7 +191,7 @@ GroundTruth rolling_ground_truth(EmbreeScene& scene, const ImageTextures& images
                                  const Projection& projection, const TruthRequest& request) {
   if (!request.track)
     throw std::invalid_argument("a rolling shutter needs the camera's track (TruthRequest::track)");
-  if (projection.kind == Projection::Kind::Equirectangular)
+  if (projection.wraps_around())
     throw std::invalid_argument("a rolling shutter needs a lens or pinhole camera, not the ERP");
   const int lines = request.readout.lines(projection);
   RollingContext c{scene, projection, request, lines, scan_steps(lines, kScanStep), {}};

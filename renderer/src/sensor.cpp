@@ -58,9 +58,8 @@ double noisy_electrons(Random& random, double mean, double read_noise) {
 // degrees).
 Image<float> relative_illumination(const Projection& camera) {
   Image<float> falloff(camera.width, camera.height, 1, 1.0f);
-  if (camera.kind == Projection::Kind::Equirectangular) return falloff;
-  const bool rectilinear = camera.kind == Projection::Kind::Pinhole ||
-                           (camera.lens && camera.lens->model() == "pinhole");
+  if (camera.wraps_around()) return falloff;
+  const bool rectilinear = camera.rectilinear();
   const Vec2 centre(camera.width / 2.0, camera.height / 2.0);
   const Vec3 axis = camera.ray(centre).normalized();
   const double centre_spread = camera.pixel_spread(centre);

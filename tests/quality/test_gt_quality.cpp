@@ -4,10 +4,10 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/quality/flow_datasets.h"
 #include "flowscape/quality/gt_quality.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
 #include "shifted_pattern.h"
 #include "temp_dir.h"
 

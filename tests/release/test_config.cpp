@@ -4,9 +4,11 @@
 #include <string>
 
 #include "flowscape/core/files.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/layout/split.h"
 #include "flowscape/release/config.h"
+#include "flowscape/release/options.h"
 #include "flowscape/release/sequence.h"
-#include "flowscape/release/split.h"
 #include "flowscape/release/writer.h"
 #include "temp_dir.h"
 
@@ -135,6 +137,60 @@ TEST_CASE("the rig is a preset or a rig file, named when it is neither") {
   const ReleaseConfig pal = release_config_from_json(nlohmann::json::parse(R"({"rig": "pal"})"));
   CHECK(release_layout(pal).cameras == std::vector<LayoutCamera>{{"pal", false}});
   CHECK(release_layout(ReleaseConfig{}).has_erp());
+}
+
+TEST_CASE("the flowscape rig's cameras are written as the ERP and the faces, others by name") {
+  ReleaseConfig config;
+  const Rig flowscape = release_rig(config);
+  REQUIRE(flowscape.cameras.size() == 7);
+  CHECK(view_of(flowscape, flowscape.cameras[0]).is_erp());
+  CHECK(view_of(flowscape, flowscape.cameras[3]).face == Face::Back);
+  config.cube = false;
+  CHECK(release_rig(config).cameras.size() == 1);
+  config.rig = "woodscape";
+  const Rig woodscape = release_rig(config);
+  CHECK(view_of(woodscape, woodscape.cameras[1]).camera == "rear");
+}
+
+TEST_CASE("the options table holds every key of config.json once, each read, written and checked") {
+  std::vector<std::string> keys;
+  for (const ReleaseOption& option : release_options()) keys.push_back(option.key);
+  std::sort(keys.begin(), keys.end());
+  CHECK(std::adjacent_find(keys.begin(), keys.end()) == keys.end());
+  // a config.json flowscape 0.15 wrote before the table existed: every key read, and written back
+  // as it was
+  const nlohmann::json written =
+      read_json(fs::path(FLOWSCAPE_SOURCE_DIR) / "tests/release/data/config_0.15.json");
+  for (const auto& [key, value] : written.items())
+    CHECK(std::binary_search(keys.begin(), keys.end(), key));
+  CHECK(to_json(release_config_from_json(written)) == written);
+  for (const ReleaseOption& option : release_options()) {
+    INFO(option.key);
+    if (std::isfinite(option.max)) {  // one step past the top of its range is refused by name
+      const bool whole = option_value(option, ReleaseConfig{}).is_number_integer();
+      const nlohmann::json past = {{option.key, whole ? nlohmann::json(std::int64_t(option.max) + 1)
+                                                      : nlohmann::json(option.max + 0.25)}};
+      CHECK_THROWS_WITH(release_config_from_json(past),
+                        Catch::Contains(std::string(option.key) + " must be in"));
+    }
+    if (!option.choices.empty())
+      CHECK_THROWS_WITH(release_config_from_json({{option.key, "neither"}}),
+                        Catch::Contains(std::string(option.key) + " must be "));
+    CHECK((*option.flag != 0) == (option.form != OptionForm::None));
+    CHECK(!std::string(option.help).empty());
+  }
+  // a list option's command-line text, and the errors that name its flag
+  const auto option = [](const char* key) {
+    return *std::find_if(release_options().begin(), release_options().end(),
+                         [&](const ReleaseOption& o) { return o.key == std::string(key); });
+  };
+  CHECK(parse_list(option("flow_gaps"), "1,2,4") == nlohmann::json{1, 2, 4});
+  CHECK(parse_list(option("outputs"), "none") == nlohmann::json::array());
+  CHECK(parse_list(option("rig_mount"), "1,0,1.5,0,-10,0") ==
+        nlohmann::json{1.0, 0.0, 1.5, 0.0, -10.0, 0.0});
+  CHECK_THROWS_WITH(parse_list(option("rig_mount"), "1,2,3"),
+                    Catch::Contains("--rig-mount wants x,y,z,yaw,pitch,roll"));
+  CHECK_THROWS_WITH(parse_list(option("flow_gaps"), "1,b"), Catch::Contains("--flow-gaps wants"));
 }
 
 TEST_CASE("the sequence mix: every third turns, the others drive; free as before 0.9") {

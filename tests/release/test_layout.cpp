@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <set>
 
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 
 using namespace flowscape;
 namespace fs = std::filesystem;

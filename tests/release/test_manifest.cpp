@@ -5,9 +5,9 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/sha256.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/manifest.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/writer.h"
 #include "temp_dir.h"
 #include "tiny_release.h"

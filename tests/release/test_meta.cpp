@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/meta.h"
 #include "temp_dir.h"
 
 using namespace flowscape;

@@ -2,9 +2,9 @@
 #include <map>
 #include <string>
 
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/split.h"
 #include "flowscape/release/config.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/split.h"
 
 using namespace flowscape;
 

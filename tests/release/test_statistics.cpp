@@ -2,9 +2,9 @@
 #include <cmath>
 
 #include "flowscape/core/files.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/quality/flow_datasets.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/statistics.h"
 #include "temp_dir.h"
 

@@ -4,7 +4,7 @@
 #include "flowscape/formats/cubemap_io.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/stitch_folder.h"
+#include "flowscape/layout/stitch_folder.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/test_scenes.h"
 #include "temp_dir.h"

@@ -8,9 +8,9 @@
 
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/dataset_card.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
 #include "independent_math.h"

@@ -391,7 +391,8 @@ TEST_CASE("a glTF file's cameras become a rig, placed as the file places them") 
          {"perspective", {{"yfov", 0.8}, {"aspectRatio", 1.5}, {"znear", 0.1}}}},
         {{"type", "perspective"}, {"perspective", {{"yfov", 1.2}, {"znear", 0.1}}}}}}};
   std::ofstream(dir.path / "cameras.gltf") << gltf.dump();
-  const Rig rig = rig_from_calibration(dir.path / "cameras.gltf", CameraMount{{1, 0, 1.5}, {}});
+  const Rig rig =
+      rig_from_calibration(dir.path / "cameras.gltf", CameraMount{{1, 0, 1.5}, Vec3::Zero()});
   REQUIRE(rig.cameras.size() == 2);
   CHECK(rig.cameras[0].name == "front_cam");
   CHECK(rig.cameras[1].name == "side");

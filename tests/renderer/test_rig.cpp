@@ -203,3 +203,34 @@ TEST_CASE("a camera off the rig's origin moves with the rig's rotation (its leve
   CHECK(on_track.readout.seconds == 0.02);
   CHECK(on_track.readout.columns);
 }
+
+TEST_CASE("the flowscape rig is seven cameras at the origin: the ERP and the cube's faces") {
+  const Rig rig = flowscape_rig(16, 8);
+  REQUIRE(rig.cameras.size() == 7);
+  CHECK(rig.flowscape);
+  CHECK(rig.has_cube_faces());
+  CHECK(rig.cameras[0].name == "erp");
+  CHECK(rig.cameras[0].projection.wraps_around());
+  CHECK((rig.cameras[0].projection.width == 32 && rig.cameras[0].projection.height == 16));
+  // the ERP's centre column looks forward; each face's centre looks along its axis (design.md)
+  CHECK(rig.cameras[0].projection.ray(Vec2(16, 8)).normalized().isApprox(Vec3::UnitX(), 1e-12));
+  const std::pair<const char*, Vec3> faces[] = {{"front", Vec3::UnitX()}, {"right", -Vec3::UnitY()},
+                                                {"back", -Vec3::UnitX()}, {"left", Vec3::UnitY()},
+                                                {"up", Vec3::UnitZ()},    {"down", -Vec3::UnitZ()}};
+  for (int f = 0; f < 6; ++f) {
+    const RigCamera& face = rig.cameras[std::size_t(f + 1)];
+    CHECK(face.name == faces[f].first);
+    CHECK((face.projection.width == 8 && face.projection.height == 8));
+    CHECK(face.projection.ray(Vec2(4, 4)).normalized().isApprox(faces[f].second, 1e-12));
+    // 90 degrees: the middle of the right edge is 45 degrees off the axis
+    CHECK(face.projection.ray(Vec2(8, 4)).normalized().dot(faces[f].second) ==
+          Approx(std::sqrt(0.5)));
+    CHECK(face.position == Vec3::Zero());
+  }
+  CHECK(rig.optical_centres() == std::vector<Vec3>{Vec3::Zero()});
+  const Rig erp_only = flowscape_rig(16, 0);
+  CHECK(erp_only.cameras.size() == 1);
+  CHECK_FALSE(erp_only.has_cube_faces());
+  CHECK_FALSE(rig_preset("woodscape", 16).flowscape);
+  CHECK(rig_preset("woodscape", 16).optical_centres().size() == 4);
+}

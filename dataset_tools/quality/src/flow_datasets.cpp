@@ -6,8 +6,8 @@
 #include <map>
 
 #include "flowscape/core/files.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

@@ -9,15 +9,15 @@
 #include "flowscape/core/files.h"
 #include "flowscape/core/names.h"
 #include "flowscape/core/random.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/release/options.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/renderer/calibration_file.h"
-#include "flowscape/renderer/neural_denoise.h"
+#include "flowscape/renderer/denoiser.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
-#include "json_integer.h"
 
 namespace flowscape {
 namespace {
@@ -26,91 +26,30 @@ void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("release config: " + what);
 }
 
-// The JSON keys of a ReleaseConfig and the members they hold, written and read from this one list.
-template <class Config, class Visit>
-void for_each_field(Config& c, Visit&& visit) {
-  visit("maps", c.maps), visit("map_list", c.map_list);
-  visit("sequences_per_map", c.sequences_per_map);
-  visit("frames", c.frames), visit("resolution", c.height), visit("face_size", c.face_size);
-  visit("spp", c.spp), visit("indirect_spp", c.indirect_spp), visit("max_bounces", c.max_bounces);
-  visit("adaptive", c.adaptive);
-  visit("weathers", c.weathers), visit("times_of_day", c.times_of_day);
-  visit("skies", c.skies);
-  visit("denoise", c.denoise), visit("denoise_model", c.denoise_model);
-  visit("vehicles", c.vehicles), visit("pedestrians", c.pedestrians), visit("seed", c.seed);
-  visit("turn_share", c.turn_share), visit("ego_routes", c.ego_routes);
-  visit("cube", c.cube), visit("models", c.models);
-  visit("actors", c.actors), visit("ego", c.ego), visit("classes", c.classes);
-  visit("asset_packs", c.asset_packs);
-  visit("outputs", c.outputs), visit("flow_gaps", c.flow_gaps), visit("rig", c.rig);
-  visit("flow_format", c.flow_format);
-  visit("rig_mount", c.rig_mount), visit("scale", c.scale), visit("scenarios", c.scenarios);
-  visit("shutter_angle", c.shutter_angle), visit("sensor_noise", c.sensor_noise);
-  visit("pixel_pitch", c.pixel_pitch), visit("lens_glare", c.lens_glare);
-  visit("vignetting", c.vignetting), visit("chromatic_aberration", c.chromatic_aberration);
-  visit("bayer", c.bayer), visit("jpeg_quality", c.jpeg_quality);
-  visit("lens_drops", c.lens_drops), visit("lens_dirt", c.lens_dirt);
-}
-
 // A rig the user's file describes (a rig file or a calibration), not a preset.
 bool is_rig_file(const std::string& rig) {
   return rig.ends_with(".json") || is_calibration_file(rig);
 }
 
-template <class T>
-T checked_value(const nlohmann::json& value, const char* key) {
-  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>)
-    return json_integer<T>(value, key);
-  else if constexpr (std::is_same_v<T, std::vector<int>>) {
-    if (!value.is_array())
-      throw std::invalid_argument(
-          std::string(1, '"').append(key).append("\" must be a list of integers"));
-    T numbers;
-    for (const nlohmann::json& number : value) numbers.push_back(json_integer<int>(number, key));
-    return numbers;
-  } else
-    return value.get<T>();
-}
-
 }  // namespace
 
 void validate(const ReleaseConfig& c) {
-  require(c.maps >= 1 && c.maps <= kMapCount, "maps must be in 1.." + std::to_string(kMapCount));
+  for (const ReleaseOption& option : release_options()) check_option(option, c);
   for (std::size_t k = 0; k < c.map_list.size(); ++k)
     require(c.map_list[k] >= 0 && c.map_list[k] < kMapCount &&
                 std::find(c.map_list.begin(), c.map_list.begin() + long(k), c.map_list[k]) ==
                     c.map_list.begin() + long(k),
             "map_list must hold different map numbers in 0.." + std::to_string(kMapCount - 1));
-  require(c.sequences_per_map >= 1 && c.sequences_per_map <= 99,
-          "sequences_per_map must be in 1..99");
-  require(c.frames >= 2 && c.frames <= 999999, "frames must be in 2..999999");
-  require(c.height >= 8 && c.height <= 8192, "resolution (ERP height) must be in 8..8192");
-  require(c.face_size >= 4 && c.face_size <= 8192, "face_size must be in 4..8192");
-  require(c.spp >= 1 && c.spp <= 65536, "spp must be in 1..65536");
-  require(c.indirect_spp >= 0 && c.indirect_spp <= 65536,
-          "indirect_spp must be in 0..65536 (0: as the denoiser wants)");
-  require(c.adaptive >= 0 && c.adaptive <= 1, "adaptive must be in 0..1 (0: uniform sampling)");
-  require(c.max_bounces >= 0 && c.max_bounces <= 64, "max_bounces must be in 0..64");
-  require(c.denoise == "atrous" || c.denoise == "oidn" || c.denoise == "none",
-          "denoise must be atrous, oidn or none");
-  require(c.denoise != "oidn" || neural_denoiser_built(),
-          "denoise oidn needs the neural denoiser, which this build leaves out "
-          "(-DFLOWSCAPE_DENOISER=OFF): use atrous or none, or rebuild with it");
-  require(c.denoise_model == "default" || c.denoise_model == "small",
-          "denoise_model must be default or small");
+  try {  // an unknown one, or oidn where the build left the U-Net out
+    make_denoiser(c.denoise, c.denoise_model);
+  } catch (const std::invalid_argument& e) {
+    require(false, e.what());
+  }
   require(!c.weathers.empty(), "weathers must not be empty");
   for (const std::string& w : c.weathers) weather_preset(w);
   require(!c.times_of_day.empty(), "times_of_day must not be empty");
   for (const std::string& t : c.times_of_day) validate_time_of_day(t);
   require(!c.skies.empty(), "skies must not be empty");
-  require(c.shutter_angle >= 1 && c.shutter_angle <= 360, "shutter_angle must be in 1..360");
-  require(c.pixel_pitch >= 0.5 && c.pixel_pitch <= 50, "pixel_pitch must be in 0.5..50");
-  require(c.lens_glare >= 0 && c.lens_glare <= 0.5, "lens_glare must be in 0..0.5");
-  require(std::abs(c.chromatic_aberration) <= 0.05, "chromatic_aberration must be in -0.05..0.05");
-  require(c.jpeg_quality >= 0 && c.jpeg_quality <= 100, "jpeg_quality must be in 0..100");
-  require(c.lens_drops >= -1 && c.lens_drops <= 200,
-          "lens_drops must be in -1..200 (-1: in rain only)");
-  require(c.lens_dirt >= 0 && c.lens_dirt <= 1, "lens_dirt must be in 0..1");
   try {
     flow_format_from_name(c.flow_format);
   } catch (const std::invalid_argument& e) {
@@ -128,12 +67,7 @@ void validate(const ReleaseConfig& c) {
     require(within_world({c.rig_mount[0], c.rig_mount[1], c.rig_mount[2]}),
             "rig_mount's x, y, z must lie within 1,000 km (metres)");
   for (const std::string& sky : c.skies) validate_sky(sky);
-  require(c.vehicles >= 0 && c.pedestrians >= 0 && c.vehicles + c.pedestrians <= 200,
-          "vehicles + pedestrians must be in 0..200");
-  require(c.turn_share >= 0 && c.turn_share <= 1, "turn_share must be in 0..1");
-  require(c.ego_routes == "mix" || c.ego_routes == "free", "ego_routes must be mix or free");
-  require(c.actors == "detailed" || c.actors == "legacy", "actors must be detailed or legacy");
-  require(c.ego == "auto" || c.ego == "on" || c.ego == "off", "ego must be auto, on or off");
+  require(c.vehicles + c.pedestrians <= 200, "vehicles + pedestrians must be in 0..200");
   require(c.asset_packs.empty() || c.actors == "detailed", "asset_packs need detailed actors");
   for (const std::string& pack : c.asset_packs) asset_pack(pack);
   class_table(c.classes);
@@ -157,11 +91,13 @@ void validate(const ReleaseConfig& c) {
 
 int indirect_samples(const ReleaseConfig& c) {
   if (c.indirect_spp > 0) return std::min(c.indirect_spp, c.spp);
-  return c.denoise == "none" ? c.spp : std::min(kDenoisedIndirectSpp, c.spp);
+  return make_denoiser(c.denoise, c.denoise_model)->filters()
+             ? std::min(kDenoisedIndirectSpp, c.spp)
+             : c.spp;
 }
 
 Rig release_rig(const ReleaseConfig& c) {
-  if (c.rig == kFlowscapeRig) return {kFlowscapeRig, {}};
+  if (c.rig == kFlowscapeRig) return flowscape_rig(c.height, c.cube ? c.face_size : 0);
   if (!is_rig_file(c.rig)) return rig_preset(c.rig, c.height);
   std::optional<CameraMount> mount;
   if (c.rig_mount.size() == 6)
@@ -176,12 +112,19 @@ Rig release_rig(const ReleaseConfig& c) {
   }
 }
 
+View view_of(const Rig& rig, const RigCamera& camera) {
+  if (!rig.flowscape) return View::of_camera(camera.name);
+  const auto index = std::size_t(&camera - rig.cameras.data());
+  return index == 0 ? View() : View(kFaces[index - 1]);
+}
+
 ReleaseLayout release_layout(const ReleaseConfig& c) {
   ReleaseLayout layout =
       ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube, flow_format_from_name(c.flow_format));
-  for (const RigCamera& camera : release_rig(c).cameras)
-    layout.cameras.push_back(
-        {camera.name, camera.projection.kind == Projection::Kind::Equirectangular});
+  const Rig rig = release_rig(c);
+  if (!rig.flowscape)  // its views are the ERP's and the faces' (ReleaseLayout::of)
+    for (const RigCamera& camera : rig.cameras)
+      layout.cameras.push_back({camera.name, camera.projection.wraps_around()});
   return layout;
 }
 
@@ -203,7 +146,7 @@ std::string config_differences(const nlohmann::json& first, const std::string& f
 
 nlohmann::json to_json(const ReleaseConfig& c) {
   nlohmann::json j = nlohmann::json::object();
-  for_each_field(c, [&](const char* key, const auto& value) { j[key] = value; });
+  for (const ReleaseOption& option : release_options()) j[option.key] = option_value(option, c);
   return j;
 }
 
@@ -219,9 +162,8 @@ ReleaseConfig release_config_from_json(const nlohmann::json& j, ReleaseConfig c)
     merged[key] = value;
   }
   try {
-    for_each_field(c, [&](const char* key, auto& field) {
-      field = checked_value<std::decay_t<decltype(field)>>(merged.at(key), key);
-    });
+    for (const ReleaseOption& option : release_options())
+      set_option(option, merged.at(option.key), c);
   } catch (const std::exception& e) {  // json's type errors and json_integer's
     throw std::invalid_argument(std::string("release config: ") + e.what());
   }

@@ -8,13 +8,14 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/preview.h"
 #include "flowscape/release/adaptive_sampling.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/layout.h"
 #include "flowscape/release/manifest.h"
-#include "flowscape/release/preview.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/release/statistics.h"
+#include "flowscape/renderer/denoiser.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/model_io.h"
 
@@ -100,12 +101,7 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
                    std::to_string(int(std::lround(100 * c.adaptive))) +
                    " % of the pixels where the denoised halves disagree most"
              : std::string())
-     << "), "
-     << (c.denoise == "none"   ? std::string("not denoised")
-         : c.denoise == "oidn" ? "denoised by OIDN's trained U-Net (" + c.denoise_model +
-                                     " model, HDR colour + albedo + normal; Apache-2.0 weights)"
-                               : std::string("denoised (a-trous, guided by albedo, normal, depth, "
-                                             "instance)"))
+     << "), " << make_denoiser(c.denoise, c.denoise_model)->description()
      << "\n\n## Output kinds\n\nEach kind is a folder of every view (the ERP"
      << (c.cube ? " and each face" : "")
      << "); bytes per frame are the mean over the release, all views together. The six kinds "

@@ -12,9 +12,9 @@
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/meta.h"
-#include "flowscape/release/split.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/meta.h"
+#include "flowscape/layout/split.h"
 #include "flowscape/release/statistics.h"
 
 namespace flowscape {

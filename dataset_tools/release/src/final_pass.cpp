@@ -53,9 +53,10 @@ Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, 
   const Shutter shutter = frame_shutter(config, sequence, frame);
   const ColorLayers layers =
       shutter_layers(renderer, camera, shutter, track, options, readout, clean);
-  const Image<float> depth = config.denoise == "atrous" ? shutter_depth(renderer, camera, shutter,
-                                                                        track, readout, clean_depth)
-                                                        : Image<float>{};
+  const Image<float> depth =
+      release_denoiser(config)->guided_by_depth()
+          ? shutter_depth(renderer, camera, shutter, track, readout, clean_depth)
+          : Image<float>{};
   const Image<std::uint16_t> no_ids(camera.width, camera.height, 1);
   return denoised_color(config, layers, camera, depth.view(), no_ids.view());
 }
@@ -65,7 +66,8 @@ Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& seque
   const RenderOptions options = sequence.color_options(config, frame);
   const CubeFrame cube = shutter_cube(
       renderer, config.face_size, frame_shutter(config, sequence, frame),
-      [&](double t) { return sequence.city.rig(t); }, options, config.denoise == "atrous", &clean);
+      [&](double t) { return sequence.city.rig(t); }, options,
+      release_denoiser(config)->guided_by_depth(), &clean);
   return denoised_cube_color(config, cube.color, cube.truth);
 }
 

@@ -6,7 +6,6 @@
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/sequence.h"
-#include "flowscape/renderer/denoise.h"
 #include "flowscape/scenes/showcase.h"
 
 namespace flowscape {
@@ -50,9 +49,7 @@ std::vector<std::vector<Image<std::uint8_t>>> actor_gallery(const GalleryOptions
       options.indirect_samples = indirect_samples(o.color);
       const ColorLayers layers = renderer.color_layers(camera, pair, options);
       const Image<float> color =
-          o.color.denoise == "none"
-              ? raw_color(layers)
-              : denoise(layers, {&camera, gt.depth.view(), gt.instance.view()});
+          release_denoiser(o.color)->view(layers, camera, gt.depth.view(), gt.instance.view());
       row.push_back(linear_to_srgb8(color.view()));
       label_tile(row.back(), name + " " + view);
       if (semantic.data.empty()) semantic = semantic_to_color(gt.semantic.view());

@@ -10,10 +10,10 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/sha256.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/explorer.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/scenes/city.h"

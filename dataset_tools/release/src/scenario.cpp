@@ -7,8 +7,8 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/names.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/manifest.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/renderer/calibration_file.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"

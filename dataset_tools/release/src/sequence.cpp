@@ -12,8 +12,8 @@
 #include "flowscape/core/files.h"
 #include "flowscape/core/profile.h"
 #include "flowscape/core/random.h"
+#include "flowscape/layout/classes.h"
 #include "flowscape/release/adaptive_sampling.h"
-#include "flowscape/release/classes.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/scenario.h"
 #include "flowscape/renderer/denoise.h"
@@ -60,12 +60,9 @@ void set_actors(SequenceSpec& spec, const ReleaseConfig& config) {
   spec.actors = style_from_name(config.actors);
   spec.asset_packs = config.asset_packs;
   const Rig rig = release_rig(config);
-  spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.cameras.empty());
-  spec.ego_cameras = {Vec3::Zero()};
-  if (!rig.cameras.empty()) {
-    spec.ego_cameras.clear();
-    for (const RigCamera& camera : rig.cameras) spec.ego_cameras.push_back(camera.position);
-  }
+  // FlowScape's views float where CARLA mounted them, with no car drawn under them
+  spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.flowscape);
+  spec.ego_cameras = rig.optical_centres();
 }
 
 FramePair Sequence::frame_pair(int frame) const {
@@ -100,22 +97,14 @@ RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) co
   return options;
 }
 
-const UNet& release_unet(const ReleaseConfig& config) {
-  static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<const UNet>> unets;  // by model size, loaded once
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& unet = unets[config.denoise_model];
-  if (!unet)
-    unet = std::make_unique<const UNet>(read_unet_weights(oidn_weights_file(config.denoise_model)));
-  return *unet;
+std::unique_ptr<const Denoiser> release_denoiser(const ReleaseConfig& config) {
+  return make_denoiser(config.denoise, config.denoise_model);
 }
 
 Image<float> denoised_cube_color(const ReleaseConfig& config, const ColorLayers& color,
                                  const GroundTruth& truth) {
   const ScopedPhase phase("denoising");
-  if (config.denoise == "none") return raw_color(color);
-  if (config.denoise == "oidn") return neural_denoise_cube(release_unet(config), color);
-  return denoise_cube(color, truth);
+  return release_denoiser(config)->cube(color, truth);
 }
 
 ColorLayers release_cube_layers(const ReleaseConfig& config, const Sequence& sequence,
@@ -132,14 +121,7 @@ Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& laye
                             const Projection& camera, ImageView<const float> depth,
                             ImageView<const std::uint16_t> instance) {
   const ScopedPhase phase("denoising");
-  if (config.denoise == "none") return raw_color(layers);
-  if (config.denoise == "oidn") {
-    const NeuralFeatures f = neural_features(layers);
-    return neural_denoise(release_unet(config), {f.color.view(), f.albedo.view(), f.normal.view(),
-                                                 autoexposure(f.color.view()),
-                                                 camera.kind == Projection::Kind::Equirectangular});
-  }
-  return denoise(layers, {&camera, depth, instance});
+  return release_denoiser(config)->view(layers, camera, depth, instance);
 }
 
 Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
@@ -199,20 +181,10 @@ Sequence make_sequence(const SequenceSpec& spec) {
 namespace {
 
 // Each view's camera -> rig, by its meta.json key.
-std::vector<std::pair<std::string, Pose>> view_mounts(const Rig& rig, bool faces) {
+std::vector<std::pair<std::string, Pose>> view_mounts(const Rig& rig) {
   std::vector<std::pair<std::string, Pose>> mounts;
-  const auto rotation = [](const Mat3& r) {
-    Pose pose = Pose::Identity();
-    pose.linear() = r;
-    return pose;
-  };
   for (const RigCamera& camera : rig.cameras)
-    mounts.emplace_back(view_dir(View::of_camera(camera.name)).generic_string(), camera.mount());
-  if (!rig.cameras.empty()) return mounts;
-  mounts.emplace_back(kErpDir, rotation(face_rotation(Face::Front)));
-  if (faces)
-    for (Face face : kFaces)
-      mounts.emplace_back(view_dir(face).generic_string(), rotation(face_rotation(face)));
+    mounts.emplace_back(view_dir(view_of(rig, camera)).generic_string(), camera.mount());
   return mounts;
 }
 
@@ -226,10 +198,9 @@ nlohmann::json rig_views_json(const Rig& rig) {
   nlohmann::json views = nlohmann::json::object();
   for (const RigCamera& camera : rig.cameras) {
     const Projection& p = camera.projection;
-    const bool erp = p.kind == Projection::Kind::Equirectangular;
     views[view_dir(View::of_camera(camera.name)).generic_string()] = {
-        {"model", erp ? "equirectangular" : p.lens->model()},
-        {"parameters", erp ? nlohmann::json{{"height", p.height}} : p.lens->parameters()},
+        {"model", p.model()},
+        {"parameters", p.parameters()},
         {"width", p.width},
         {"height", p.height},
         {"camera_to_rig", matrix_rows(p.camera_to_rig())},
@@ -278,12 +249,11 @@ SequenceMeta sequence_meta(const Sequence& s, const SequencePlan& plan,
   for (int f = 0; f < config.frames; ++f) meta.poses.push_back(s.city.rig(s.time(f)));
   meta.city = to_json(s.city);
   const Rig rig = release_rig(config);
-  meta.erp_height = rig.cameras.empty() ? config.height : 0;  // another rig has no ERP
-  meta.face_size = config.cube && rig.cameras.empty() ? config.face_size : 0;
-  meta.views =
-      rig.cameras.empty() ? views_json(config.height, meta.face_size) : rig_views_json(rig);
-  if (!rig.cameras.empty()) meta.rig = to_json(rig);
-  for (const auto& [view, mount] : view_mounts(rig, meta.face_size > 0)) {
+  meta.erp_height = rig.flowscape ? config.height : 0;  // another rig has no ERP
+  meta.face_size = rig.has_cube_faces() ? config.face_size : 0;
+  meta.views = rig.flowscape ? views_json(config.height, meta.face_size) : rig_views_json(rig);
+  if (!rig.flowscape) meta.rig = to_json(rig);
+  for (const auto& [view, mount] : view_mounts(rig)) {
     nlohmann::json poses = nlohmann::json::array();
     for (const Pose& pose : meta.poses) poses.push_back(pose_row_major(pose * mount));
     meta.views[view]["poses"] = poses;

@@ -9,8 +9,8 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/scenes/model_io.h"
 #include "flowscape/stitcher/geometry.h"
 

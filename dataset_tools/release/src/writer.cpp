@@ -13,59 +13,19 @@
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/formats/srgb.h"
-#include "flowscape/release/classes.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/dataset_card.h"
 #include "flowscape/release/explorer.h"
-#include "flowscape/release/final_pass.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/release/frame_pipeline.h"
 #include "flowscape/release/manifest.h"
-#include "flowscape/release/meta.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/statistics.h"
-#include "flowscape/renderer/denoise.h"
-#include "flowscape/stitcher/stitch.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;
 namespace {
-
-using ViewImages = std::map<std::string, AnyImage>;
-
-// The images of one view of a frame, by release kind (layout.h), each in its file's pixel type;
-// truth.more[k] is the flow of step more_steps[k]. A new output kind adds its image here.
-// A view's images, its semantic ids in the release's class table.
-// The kinds beside the clean colour and the ground truth (empty where the layout has none).
-struct CameraImages {
-  Image<std::uint8_t> final{};
-  Image<float> time{};
-  Image<std::uint8_t> lens_mask{};
-};
-
-ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
-                       const std::vector<int>& more_steps, const ClassTable& classes,
-                       CameraImages camera = {}) {
-  ViewImages images;
-  images.emplace("color", std::move(color));
-  images.emplace("final", std::move(camera.final));
-  images.emplace("time", std::move(camera.time));
-  images.emplace("lens_mask", std::move(camera.lens_mask));
-  images.emplace("flow", std::move(truth.flow));
-  to_table_ids(classes, truth.semantic.view());
-  images.emplace("semantic", std::move(truth.semantic));
-  images.emplace("instance", std::move(truth.instance));
-  images.emplace("depth", std::move(truth.depth));
-  images.emplace("valid", std::move(truth.valid));
-  for (std::size_t k = 0; k < more_steps.size(); ++k) {
-    const ReleaseKind flow = flow_kind_of_step(more_steps[k]);
-    images.emplace(flow.name(), std::move(truth.more[k].flow));
-    images.emplace(flow.valid_kind().name(), std::move(truth.more[k].valid));
-  }
-  images.emplace("scene_flow", std::move(truth.scene_flow));
-  images.emplace("normal", std::move(truth.normal));
-  images.emplace("normal_shading", std::move(truth.shading_normal));
-  return images;
-}
 
 template <class T>
 constexpr PixelType pixel_type() {
@@ -128,46 +88,6 @@ FrameStatistics statistics_of(const ViewImages& images, FlowFormat flow_format, 
                           image("semantic", std::uint8_t()), image("instance", std::uint16_t()));
 }
 
-// The final pass of the six faces (stacked, as write_cube takes them) and the ERP stitched from
-// them, each through the camera (virtual cameras: no vignetting).
-struct FinalFlowscape {
-  Image<std::uint8_t> faces, erp;
-};
-FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequence,
-                               Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
-                               int frame, const CubeFrame& clean) {
-  const Image<float> faces = final_cube_color(config, sequence, renderer, frame, clean);
-  FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
-  const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
-  int view = 1;
-  for (Face face : kFaces) {
-    const ImageView<const float> linear = face_view(faces.view(), face);
-    const Image<std::uint8_t> developed =
-        develop(config, sequence, linear, face_camera, false, exposure, frame, view++);
-    std::copy(developed.data.begin(), developed.data.end(), face_view(out.faces.view(), face).data);
-  }
-  const Image<float> erp = resample_bilinear(map.sampling, faces);
-  out.erp = develop(config, sequence, erp.view(), Projection::equirectangular(config.height), false,
-                    exposure, frame, 0);
-  return out;
-}
-
-// A virtual camera's (the ERP's, the stacked faces'): no readout, no lens to cover.
-CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection& camera,
-                                   const TruthPlan& plan, Image<std::uint8_t> final) {
-  CameraImages images{std::move(final)};
-  if (layout.has("time")) images.time = capture_times(camera, {}, plan.request.pair.time);
-  if (layout.has("lens_mask"))
-    images.lens_mask = Image<std::uint8_t>(camera.width, camera.height, 1);
-  return images;
-}
-
-// A frame's images as rendered, written by write_frame (while the next frame renders).
-struct FrameImages {
-  std::optional<ViewImages> cube;                  // the six faces, stacked
-  std::vector<std::pair<View, ViewImages>> views;  // the ERP, or each camera of a rig in order
-};
-
 // Writes a frame's files; returns the statistics of its first view (statistics_view's).
 FrameStatistics write_frame(const fs::path& dir, const ReleaseLayout& layout, int frame, int frames,
                             const FrameImages& images) {
@@ -179,105 +99,6 @@ FrameStatistics write_frame(const fs::path& dir, const ReleaseLayout& layout, in
   }
   const ScopedPhase phase("statistics");
   return statistics_of(images.views.front().second, layout.flow_format, frame, frames);
-}
-
-// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
-// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
-// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
-// previous frame) becomes this frame's.
-FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                                   const Sequence& sequence, Renderer& renderer,
-                                   const CubeToErp* map, int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
-  const Projection erp = Projection::equirectangular(config.height);
-  GroundTruth truth = [&] {
-    const ScopedPhase phase("ground truth");
-    return renderer.ground_truth(erp, plan.request);
-  }();
-  Image<float> erp_color;
-  ColorLayers erp_layers;  // without faces
-  CubeFrame cube;
-  Image<float> faces_color;
-  if (map) {
-    cube = render_cube(renderer, config.face_size, plan.request, nullptr);
-    cube.color = release_cube_layers(config, sequence, renderer, cube.truth, frame);
-    faces_color = denoised_cube_color(config, cube.color, cube.truth);
-    const ScopedPhase phase("cube to ERP");
-    erp_color = resample_bilinear(map->sampling, faces_color);
-  } else {
-    erp_layers = release_layers(config, sequence, renderer, erp,
-                                TruthRequest{sequence.frame_pair(frame)}, frame, truth);
-    erp_color = denoised_color(config, erp_layers, erp, truth.depth.view(), truth.instance.view());
-  }
-  Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
-  FinalFlowscape final;
-  if (exposure) {
-    const ScopedPhase phase("final pass");
-    *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), erp, frame);
-    if (map) {
-      final = final_flowscape(config, sequence, renderer, *map, *exposure, frame, cube);
-    } else {
-      const Image<float> linear = final_color(
-          config, sequence, renderer, erp, [&](double t) { return sequence.city.rig(t); }, frame,
-          {}, erp_layers, truth.depth);
-      final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
-    }
-  }
-  FrameImages images;
-  if (map) {
-    const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
-    images.cube = view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()),
-                              plan.steps, class_table(config.classes),
-                              virtual_camera_images(layout, faces, plan, std::move(final.faces)));
-  }
-  images.views.emplace_back(
-      View(),
-      view_images(std::move(truth), std::move(erp_clean), plan.steps, class_table(config.classes),
-                  virtual_camera_images(layout, erp, plan, std::move(final.erp))));
-  return images;
-}
-
-// Another rig: every camera ray cast and path traced directly from its own optical centre.
-FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                             const Rig& rig, const Sequence& sequence, Renderer& renderer,
-                             int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
-  FrameImages images;
-  for (const RigCamera& camera : rig.cameras) try {
-      const int view = int(&camera - rig.cameras.data());
-      const TruthRequest request = at_camera(plan.request, camera);
-      GroundTruth truth = [&] {
-        const ScopedPhase phase("ground truth");
-        return renderer.ground_truth(camera.projection, request);
-      }();
-      const ColorLayers layers =
-          release_layers(config, sequence, renderer, camera.projection, request, frame, truth);
-      const Image<float> color = denoised_color(config, layers, camera.projection,
-                                                truth.depth.view(), truth.instance.view());
-      Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
-      if (exposure) {
-        const ScopedPhase phase("final pass");
-        if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
-          *exposure =
-              exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
-        const Image<float> linear =
-            final_color(config, sequence, renderer, camera.projection, request.track, frame,
-                        camera.readout, layers, truth.depth);
-        final = develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame,
-                        view);
-      }
-      CameraImages extras{std::move(final)};
-      if (layout.has("time"))
-        extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
-      if (layout.has("lens_mask"))
-        extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
-      images.views.emplace_back(View::of_camera(camera.name),
-                                view_images(std::move(truth), std::move(clean), plan.steps,
-                                            class_table(config.classes), std::move(extras)));
-    } catch (const RayError& e) {
-      throw e.of_camera(camera.name);
-    }
-  return images;
 }
 
 // The 2-D boxes of every instance per view and frame, from the sequence's instance images:
@@ -387,12 +208,11 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   Exposure exposure;
   std::unique_ptr<Renderer> renderer;
   const Rig rig = release_rig(config);
-  const bool faces = rig.cameras.empty() && config.cube;
+  const bool faces = rig.has_cube_faces();
   const CubeToErp map = faces && !frames_to_render.empty()
                             ? make_cube_to_erp(config.face_size, config.height)
                             : CubeToErp{};
-  const Projection metering = rig.cameras.empty() ? Projection::equirectangular(config.height)
-                                                  : rig.cameras.front().projection;
+  const Projection& metering = rig.cameras.front().projection;  // the flowscape rig's: its ERP
   // frame f's files are written while frame f + 1 renders (one frame in flight: WriteOverlap)
   std::future<void> writing;
   const auto write = [&](int f, FrameImages images) {
@@ -415,10 +235,8 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     Exposure* frame_exposure = final ? &exposure : nullptr;
     FrameImages images = [&] {
       try {
-        return rig.cameras.empty()
-                   ? render_flowscape_frame(config, layout, sequence, *renderer,
-                                            faces ? &map : nullptr, f, frame_exposure)
-                   : render_rig_frame(config, layout, rig, sequence, *renderer, f, frame_exposure);
+        return render_frame({config, layout, rig, sequence, *renderer, faces ? &map : nullptr}, f,
+                            frame_exposure);
       } catch (const RayError& e) {  // the ERP's, or a face's or rig camera's already named
         throw std::runtime_error(plan.name + ", frame " + std::to_string(f) + ", " +
                                  e.of_camera("erp").what());

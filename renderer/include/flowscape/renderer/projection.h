@@ -15,8 +15,8 @@ struct Projection {
   enum class Kind { Pinhole, Equirectangular, Lens };
   Kind kind = Kind::Pinhole;
   int width = 0, height = 0;
-  Mat3 rotation = Mat3::Identity();  // pinhole, lens: camera (x right, y down, z forward) -> rig
-  double focal = 0;                  // pinhole, pixels; principal point at the image centre
+  Mat3 rotation = Mat3::Identity();    // pinhole, lens: camera (x right, y down, z forward) -> rig
+  double focal = 0;                    // pinhole, pixels; principal point at the image centre
   std::shared_ptr<const Lens> lens{};  // Lens
 
   static Projection cube_face(Face face, int face_size);
@@ -29,6 +29,15 @@ struct Projection {
   // Whether the pixel position sees anything: false outside a lens's image (circle, annulus);
   // there ray() is the zero vector.
   bool covers(Vec2 pixel) const;
+  // Whether its columns continue round (the ERP): its flow wraps at the seam, and filters reach
+  // across it.
+  bool wraps_around() const { return kind == Kind::Equirectangular; }
+  // Whether straight lines stay straight: the cube's faces, a pinhole, a lens of the pinhole model.
+  bool rectilinear() const;
+  // The camera model and its parameters as rig files and meta.json give them: "equirectangular"
+  // with its height, "pinhole" with K (OpenCV's pixel convention) for a face, or the lens's.
+  std::string model() const;
+  nlohmann::json parameters() const;
 
   // The view's camera frame (x right, y down, z forward) -> rig: a pinhole's rotation; for the ERP
   // the front face's (the ERP's centre, phi = theta = 0, looks along the camera's z). Normals and

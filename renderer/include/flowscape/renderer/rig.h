@@ -1,7 +1,7 @@
 #pragma once
 // A rig: named cameras, each a projection (a lens of lens.h, or the equirectangular panorama) and a
-// mount in the rig frame (x forward, y left, z up). The `flowscape` rig is the ERP and the six
-// cube faces at the rig's origin, written as the release always has (no cameras listed here).
+// mount in the rig frame (x forward, y left, z up). The `flowscape` rig is seven cameras too: the
+// ERP and the six cube faces at the rig's origin, written as FlowScape's views.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -21,12 +21,23 @@ struct RigCamera {
 
 struct Rig {
   std::string name;                // a preset's name or the rig file's
-  std::vector<RigCamera> cameras;  // empty: the flowscape rig
+  std::vector<RigCamera> cameras;  // at least one
+  // The flowscape rig (flowscape_rig): its ERP's colour is stitched from the cube faces' where it
+  // has them, and its views are written as FlowScape's (erp/, cube/<face>/), not as cameras/<name>.
+  bool flowscape = false;
+
+  // The flowscape rig's six cube faces (cameras 1 to 6, in geometry.h's kFaces order).
+  bool has_cube_faces() const { return flowscape && cameras.size() == 1 + kFaces.size(); }
+  // Where its cameras sit (rig frame): each camera's, the flowscape rig's one shared centre.
+  std::vector<Vec3> optical_centres() const;
 };
 
 inline constexpr const char* kFlowscapeRig = "flowscape";
 // The most cameras a rig file or calibration may hold (each writes a folder of every kind).
 inline constexpr std::size_t kMaxRigCameras = 16;
+// The flowscape rig: the ERP `height` high ("erp") and, with a face_size above 0, the six 90-degree
+// cube faces ("front", "back", ... as face_name gives them) that face_size square.
+Rig flowscape_rig(int height, int face_size);
 // Rig presets besides flowscape: "fisheye", "woodscape", "pal", "dual-fisheye".
 std::vector<std::string> rig_presets();
 // A preset's cameras, their images scaled to `size` (the release's ERP height): fisheye and pal

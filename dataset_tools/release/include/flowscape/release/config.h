@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 #include "flowscape/renderer/rig.h"
 
 namespace flowscape {
@@ -127,9 +127,11 @@ inline constexpr int kDenoisedIndirectSpp = 4;
 int indirect_samples(const ReleaseConfig& config);
 // The kinds and views a release made with `config` holds (its outputs, flow gaps, rig, faces).
 ReleaseLayout release_layout(const ReleaseConfig& config);
-// The release's rig (renderer/rig.h): none of its cameras for flowscape; a rig file's errors
-// are FileErrors naming it.
+// The release's rig (renderer/rig.h): for flowscape the ERP and, with `cube`, the six faces; a rig
+// file's errors are FileErrors naming it.
 Rig release_rig(const ReleaseConfig& config);
+// The view a camera of the rig is written as: the flowscape rig's ERP and faces, or cameras/<name>.
+View view_of(const Rig& rig, const RigCamera& camera);
 nlohmann::json to_json(const ReleaseConfig& config);
 // "spp: 8 recorded, 4 now; seed: ..." for the keys whose values differ between two configs as JSON,
 // each value followed by the name of the config it comes from.

@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
+#include "flowscape/layout/meta.h"
 #include "flowscape/release/config.h"
-#include "flowscape/release/meta.h"
-#include "flowscape/renderer/neural_denoise.h"
+#include "flowscape/renderer/denoiser.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/city.h"
 #include "flowscape/weather/weather.h"
@@ -73,9 +73,8 @@ struct Sequence {
 // A Renderer keeps a reference to sequence.city.scene: do not move the Sequence while one lives.
 Sequence make_sequence(const SequenceSpec& spec);
 
-// The U-Net of the release's denoise_model, loaded once per process (a FileError naming the
-// weights file when they are missing or damaged).
-const UNet& release_unet(const ReleaseConfig& config);
+// The denoiser the release's denoise and denoise_model name (renderer/denoiser.h).
+std::unique_ptr<const Denoiser> release_denoiser(const ReleaseConfig& config);
 // A view's colour layers as the release's denoiser leaves them (the guides for a-trous).
 Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
                             const Projection& camera, ImageView<const float> depth,

@@ -13,8 +13,8 @@
 
 #include "flowscape/core/image.h"
 #include "flowscape/core/types.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 
 namespace flowscape {
 

@@ -10,7 +10,7 @@
 
 #include "flowscape/core/image.h"
 #include "flowscape/core/types.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 
 namespace flowscape {
 

@@ -1,4 +1,4 @@
-#include "flowscape/release/split.h"
+#include "flowscape/layout/split.h"
 
 #include <tbb/parallel_for.h>
 
@@ -12,8 +12,8 @@
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/layout.h"
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/layout/meta.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

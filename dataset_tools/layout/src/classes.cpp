@@ -1,4 +1,4 @@
-#include "flowscape/release/classes.h"
+#include "flowscape/layout/classes.h"
 
 #include <stdexcept>
 

@@ -1,11 +1,11 @@
-#include "flowscape/release/preview.h"
+#include "flowscape/layout/preview.h"
 
 #include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/flow_viz.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/layout.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "flowscape/release/stitch_folder.h"
+#include "flowscape/layout/stitch_folder.h"
 
 #include <algorithm>
 #include <optional>
@@ -9,7 +9,7 @@
 #include "flowscape/formats/complete_file.h"
 #include "flowscape/formats/cubemap_io.h"
 #include "flowscape/formats/flow_viz.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 #include "flowscape/stitcher/stitch.h"
 #include "flowscape/stitcher/synthetic.h"
 

@@ -1,11 +1,11 @@
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
-#include "flowscape/release/classes.h"
+#include "flowscape/layout/classes.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

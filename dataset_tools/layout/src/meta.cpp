@@ -1,4 +1,4 @@
-#include "flowscape/release/meta.h"
+#include "flowscape/layout/meta.h"
 
 #include <algorithm>
 #include <fstream>
@@ -6,8 +6,8 @@
 #include <map>
 
 #include "flowscape/core/files.h"
-#include "flowscape/release/classes.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/classes.h"
+#include "flowscape/layout/layout.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

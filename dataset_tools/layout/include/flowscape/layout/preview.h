@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "flowscape/core/image.h"
-#include "flowscape/release/layout.h"
+#include "flowscape/layout/layout.h"
 
 namespace flowscape {
 

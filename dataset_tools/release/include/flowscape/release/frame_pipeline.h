@@ -1,0 +1,45 @@
+#pragma once
+// What a frame of a sequence becomes before it is written: every view's images by release kind
+// (layout.h's table), each in its file's pixel type. The colour of a view is made in one place:
+// path traced (adaptive sampling where asked), denoised by the release's denoiser, and with the
+// final pass its shutter, sensor and development; the ground truth is ray cast beside it. The
+// writer (writer.h) only writes what it gets (Kubric's render-to-a-dict-of-layers, then writers).
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "flowscape/formats/image_io.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/release/config.h"
+#include "flowscape/release/final_pass.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/stitcher/stitch.h"
+
+namespace flowscape {
+
+// A view's images by release kind name ("color", "flow", "flow_backward_gap2", ...).
+using ViewImages = std::map<std::string, AnyImage>;
+
+struct FrameImages {
+  std::optional<ViewImages> cube;                  // the flowscape rig's six faces, stacked
+  std::vector<std::pair<View, ViewImages>> views;  // its ERP, or each camera of a rig in order
+};
+
+// What every frame of a sequence shares.
+struct FramePipeline {
+  const ReleaseConfig& config;
+  const ReleaseLayout& layout;
+  const Rig& rig;  // release_rig(config)
+  const Sequence& sequence;
+  Renderer& renderer;
+  const CubeToErp* cube_to_erp;  // the flowscape rig's faces to its ERP; null without faces
+};
+
+// Frame `frame`'s images. With the final pass, `exposure` (the one after the previous frame)
+// becomes this frame's; null without it. RayErrors name the camera (a face or a rig camera; the
+// flowscape ERP's are left for the caller to name).
+FrameImages render_frame(const FramePipeline& pipeline, int frame, Exposure* exposure);
+
+}  // namespace flowscape
