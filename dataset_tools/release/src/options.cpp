@@ -178,14 +178,16 @@ const std::vector<ReleaseOption>& release_options() {
        .choices = {"mix", "free"},
        .help = "mix: --turn-share of the sequences turn, the others drive; free: every ego "
                "drives as traffic lets it from where its seed starts it (releases of flowscape "
-               "0.8 and before, whose config.json lacks the key, are read so)"},
+               "0.8 and before, whose config.json lacks the key, are read so)",
+       .absent = "free"},
       {.key = "actors",
        .field = &C::actors,
        .section = Section::Scene,
        .flag = "--actors",
        .choices = {"detailed", "legacy"},
        .help = "detailed: the built-in vehicle families and people, parked vehicles as actors; "
-               "legacy: flowscape 0.9's box models (reproduces its releases)"},
+               "legacy: flowscape 0.9's box models (reproduces its releases)",
+       .absent = "legacy"},
       {.key = "ego",
        .field = &C::ego,
        .section = Section::Scene,
@@ -287,7 +289,8 @@ const std::vector<ReleaseOption>& release_options() {
                "depth valid): flow_backward (brings valid_backward), valid_backward, scene_flow, "
                "normal, normal_shading, final (the final pass: motion blur, exposure, noise, "
                "lens; a second path trace), lens_mask, time; all; none",
-       .list_wants = "output kinds separated by commas"},
+       .list_wants = "output kinds separated by commas",
+       .absent = nlohmann::json::array()},
       {.key = "flow_gaps",
        .field = &C::flow_gaps,
        .section = Section::Outputs,
@@ -295,7 +298,8 @@ const std::vector<ReleaseOption>& release_options() {
        .form = Form::List,
        .help = "frame gaps of every flow kind (1 is the next frame and must be there; "
                "flow_gap<k> and, with backward flow, flow_backward_gap<k> for the others)",
-       .list_wants = "whole numbers separated by commas, e.g. 1,2,4"},
+       .list_wants = "whole numbers separated by commas, e.g. 1,2,4",
+       .absent = nlohmann::json::array({1})},
       {.key = "flow_format",
        .field = &C::flow_format,
        .section = Section::Outputs,
@@ -451,6 +455,16 @@ void check_option(const ReleaseOption& option, const ReleaseConfig& config) {
   if (!option.choices.empty() && std::none_of(option.choices.begin(), option.choices.end(),
                                               [&](const char* choice) { return value == choice; }))
     refuse(alternatives(option.choices));
+}
+
+nlohmann::json with_absent_keys(nlohmann::json recorded) {
+  if (!recorded.is_object()) return recorded;
+  const ReleaseConfig defaults;
+  for (const ReleaseOption& option : release_options())
+    if (!recorded.contains(option.key))
+      recorded[option.key] =
+          option.absent.is_null() ? option_value(option, defaults) : option.absent;
+  return recorded;
 }
 
 nlohmann::json parse_list(const ReleaseOption& option, const std::string& text) {

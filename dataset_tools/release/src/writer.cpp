@@ -20,6 +20,7 @@
 #include "flowscape/release/explorer.h"
 #include "flowscape/release/frame_pipeline.h"
 #include "flowscape/release/manifest.h"
+#include "flowscape/release/options.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/statistics.h"
 
@@ -147,31 +148,14 @@ void remove_release_files(const fs::path& out) {
 }
 
 // The config a release in `out` was started with: config.json (written before any frame) or, for a
-// release from before it, its manifest's.
+// release from before it, its manifest's; the keys of options added since as they were then.
 nlohmann::json recorded_config(const fs::path& out) {
   nlohmann::json recorded;
   if (fs::exists(out / kConfigFile))
     recorded = read_json(out / kConfigFile);
   else if (fs::exists(out / kManifestFile))
     recorded = read_json(out / kManifestFile).value("config", nlohmann::json());
-  if (recorded.is_object()) {  // releases from before these keys held what they say now
-    if (!recorded.contains("outputs")) recorded["outputs"] = nlohmann::json::array();
-    if (!recorded.contains("flow_gaps")) recorded["flow_gaps"] = {1};
-    if (!recorded.contains("ego_routes")) recorded["ego_routes"] = "free";  // 0.8 and before
-    if (!recorded.contains("turn_share")) recorded["turn_share"] = ReleaseConfig{}.turn_share;
-    if (!recorded.contains("actors")) recorded["actors"] = "legacy";  // 0.9 and before
-    if (!recorded.contains("ego")) recorded["ego"] = ReleaseConfig{}.ego;
-    if (!recorded.contains("classes")) recorded["classes"] = ReleaseConfig{}.classes;
-    if (!recorded.contains("asset_packs")) recorded["asset_packs"] = nlohmann::json::array();
-    if (!recorded.contains("map_list")) recorded["map_list"] = nlohmann::json::array();
-    const nlohmann::json now = to_json(ReleaseConfig{});
-    for (const char* key :
-         {"skies", "shutter_angle", "sensor_noise", "pixel_pitch", "lens_glare", "vignetting",
-          "chromatic_aberration", "bayer", "jpeg_quality", "lens_drops", "lens_dirt", "rig_mount",
-          "scenarios", "scale", "adaptive"})  // the defaults hold what releases without them did
-      if (!recorded.contains(key)) recorded[key] = now.at(key);
-  }
-  return recorded;
+  return with_absent_keys(recorded);
 }
 
 }  // namespace

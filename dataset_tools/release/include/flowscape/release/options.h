@@ -55,6 +55,9 @@ struct ReleaseOption {
   // Parsed: the text -> the config keys it sets ({"resolution": 512}); Each: one value -> an object
   // merged with the others'. Throw std::invalid_argument naming the option.
   nlohmann::json (*parse)(const std::string& text) = nullptr;
+  // What a config.json without the key meant (a release from before the option): null, the
+  // default; else the value those releases were made with.
+  nlohmann::json absent = nullptr;
 };
 
 // Every option, by section.
@@ -69,6 +72,8 @@ void set_option(const ReleaseOption& option, const nlohmann::json& value, Releas
 // Throws std::invalid_argument ("release config: spp must be in 1..65536") where the option's
 // value leaves its range or choices.
 void check_option(const ReleaseOption& option, const ReleaseConfig& config);
+// A config.json as written by any earlier release, with the keys it lacks as `absent` says.
+nlohmann::json with_absent_keys(nlohmann::json recorded);
 // A list option's command-line text as config.json holds it; throws std::invalid_argument.
 nlohmann::json parse_list(const ReleaseOption& option, const std::string& text);
 
