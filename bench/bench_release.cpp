@@ -9,10 +9,10 @@
 // where that release's time went by phase. Each pair measured alternately, median of
 // max(runs, 3) each.
 // First, flowscape 0.10's path (each frame written before the next renders, by 0.10's renderer:
-// WriteOverlap::None) against the new one (writing a frame while the next renders, the renderer's
+// kEarlierPath) against the new one (writing a frame while the next renders, the renderer's
 // levers on), with how many cores were busy, and where the new path's time went by phase; then
-// each renderer lever on its own against 0.10's and 0.11's renderer (RenderOptions and
-// TruthRequest switch it back) and 0.12's final pass (4 shutter steps, not the clean frame in the
+// each renderer lever on its own against 0.10's and 0.11's renderer (a TracingBaseline switches it
+// back) and 0.12's final pass (4 shutter steps, not the clean frame in the
 // middle) on the first frame of each sequence of the fixed sample below,
 // alternating, median of max(runs, 1), and whether any image changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
@@ -37,6 +37,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// flowscape 0.10's path: each frame's files written before the next renders, its rays traced one by
+// one and its scattered paths seeing the sky unaveraged.
+constexpr TracingBaseline kEarlierPath{.single_rays = true, .full_sky_when_scattered = true};
+
+// What `render` gives with the renderer tracing as `baseline` says, the renderer as it was after.
+template <class Render>
+auto traced_as(Renderer& renderer, const TracingBaseline& baseline, Render render) {
+  renderer.trace_as(baseline);
+  auto rendered = render();
+  renderer.trace_as({});
+  return rendered;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -52,7 +65,7 @@ struct Measured {
 
 // Writes the planned sequences, each's set-up (its city, models and BVHs) timed on its own first.
 Measured measure(const ReleaseConfig& config, const std::vector<SequencePlan>& plans,
-                 const fs::path& out, int release_frames, WriteOverlap overlap) {
+                 const fs::path& out, int release_frames, const TracingBaseline* baseline) {
   double setup = 0, setup_cpu = 0, cpu = 0;
   Measured m;
   reset_phase_times();
@@ -68,7 +81,7 @@ Measured measure(const ReleaseConfig& config, const std::vector<SequencePlan>& p
     setup_cpu += process_cpu_seconds() - setup_cpu_before;
     const double cpu_before = process_cpu_seconds();
     start = std::chrono::steady_clock::now();
-    write_sequence(config, plan, out, {[] {}, [] {}}, overlap);
+    write_sequence(config, plan, out, {[] {}, [] {}}, baseline);
     m.wall += seconds_since(start);
     cpu += process_cpu_seconds() - cpu_before;
   }
@@ -85,8 +98,8 @@ Measured measure(const ReleaseConfig& config, const std::vector<SequencePlan>& p
 }
 
 Measured measure(const ReleaseConfig& config, const fs::path& out, int release_frames,
-                 WriteOverlap overlap = WriteOverlap::Frame) {
-  return measure(config, {plan_sequences(config).front()}, out, release_frames, overlap);
+                 const TracingBaseline* baseline = nullptr) {
+  return measure(config, {plan_sequences(config).front()}, out, release_frames, baseline);
 }
 
 double seconds_per_frame(const ReleaseConfig& config, const fs::path& out, int release_frames) {
@@ -115,10 +128,11 @@ Measured median(std::vector<Measured> all) {  // by seconds per frame
 
 // The median run of `runs` over the fixed sample.
 Measured median_run(const ReleaseConfig& config, const std::vector<SequencePlan>& sample,
-                    const fs::path& out, int release_frames, WriteOverlap overlap, int runs) {
+                    const fs::path& out, int release_frames, const TracingBaseline* baseline,
+                    int runs) {
   std::vector<Measured> all;
   for (int run = 0; run < runs; ++run)
-    all.push_back(measure(config, sample, out, release_frames, overlap));
+    all.push_back(measure(config, sample, out, release_frames, baseline));
   return median(all);
 }
 
@@ -238,16 +252,17 @@ struct Lever {
 constexpr Lever kLevers[] = {
     {"the averaged sky after a diffuse event (colour)",
      [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
-       RenderOptions options = sequence.color_options(config, 0);
-       options.full_sky_when_scattered = !with;
-       return faces_color(renderer, config.face_size, sequence.frame_pair(0), options);
+       return traced_as(renderer, {.full_sky_when_scattered = !with}, [&] {
+         return faces_color(renderer, config.face_size, sequence.frame_pair(0),
+                            sequence.color_options(config, 0));
+       });
      }},
     {"ground truth's camera and visibility rays in packets",
      [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
-       TruthRequest request =
+       const TruthRequest request =
            truth_plan(sequence, release_layout(config), 0, config.frames).request;
-       request.single_rays = !with;
-       return frame_truth(renderer, config, request);
+       return traced_as(renderer, {.single_rays = !with},
+                        [&] { return frame_truth(renderer, config, request); });
      }},
     {"final pass: the clean frame as the shutter's middle",
      [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
@@ -302,10 +317,8 @@ void print_fixed_sample(ReleaseConfig config, const fs::path& out, int full_fram
       "rain dawn), %d frames each, median of %d runs\n",
       sample.size(), config.frames, runs);
   const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
-  const Measured old_path =
-      median_run(config, sample, out, release_frames, WriteOverlap::None, runs);
-  const Measured new_path =
-      median_run(config, sample, out, release_frames, WriteOverlap::Frame, runs);
+  const Measured old_path = median_run(config, sample, out, release_frames, &kEarlierPath, runs);
+  const Measured new_path = median_run(config, sample, out, release_frames, nullptr, runs);
   for (const auto& [name, m] : {std::pair{"0.10's path", &old_path}, {"the new path", &new_path}})
     std::printf(
         "    %-14s %6.2f s/frame, cores busy %.2f of %d (%.2f with %d-frame sequences): full "
@@ -327,8 +340,8 @@ int main(int argc, char** argv) {
   if (runs > 0) print_fixed_sample(config, out, full_frames, sequence_frames, threads, runs);
   std::printf("bench_release: %d frames of map00_seq00, %d threads, %d x %d ERP, %d^2 faces\n",
               frames, threads, config.height, 2 * config.height, config.face_size);
-  const Measured serial = measure(config, out, sequence_frames, WriteOverlap::None);
-  const Measured overlapped = measure(config, out, sequence_frames, WriteOverlap::Frame);
+  const Measured serial = measure(config, out, sequence_frames, &kEarlierPath);
+  const Measured overlapped = measure(config, out, sequence_frames, nullptr);
   const double release = overlapped.seconds_per_frame;
   std::printf(
       "  0.10's path (writing after rendering)     %6.2f s/frame, cores busy %.2f of %d (%.2f "

@@ -35,9 +35,10 @@ struct Setup {
   // The converged reference of flowscape 0.11's path tracer (the dome's full resolution after a
   // diffuse event): how far the averaged sky moves the converged colour.
   Image<float> reference_before_averaged_sky(int frame, int spp) {
-    RenderOptions options = reference_options(frame, spp);
-    options.full_sky_when_scattered = true;
-    return renderer.color(erp, pair, options);
+    renderer.trace_as({.full_sky_when_scattered = true});
+    Image<float> reference = renderer.color(erp, pair, reference_options(frame, spp));
+    renderer.trace_as({});
+    return reference;
   }
   Sequence sequence;
   Renderer renderer;

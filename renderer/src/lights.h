@@ -55,7 +55,7 @@ class LampLights {
 // uniform over the cell's solid angle (pbrt's piecewise-constant environment sampling).
 class SkySampler {
  public:
-  // average false: the dome's own cells (flowscape 0.11)
+  // average false: the dome's own cells (TracingBaseline::full_sky_when_scattered)
   explicit SkySampler(const SkyDome* dome, bool average = true);
   bool empty() const { return dome_.radiance.empty(); }
   Rgb radiance(const Vec3& d) const;  // d.z() >= 0: the averaged dome's

@@ -28,8 +28,10 @@ struct Renderer::Impl {
   bool lights_average_sky = true;
   explicit Impl(const Scene& scene) : images(scene), embree(scene, &images) {}
 
-  const Lights& lights_at(double time, const RenderOptions& options) {
-    const bool average_sky = !options.full_sky_when_scattered;
+  TracingBaseline baseline;
+
+  const Lights& lights_at(double time) {
+    const bool average_sky = !baseline.full_sky_when_scattered;
     if (!lights || lights_time != time || lights_average_sky != average_sky)
       lights = std::make_unique<const Lights>(embree.scene(), time, average_sky),
       lights_time = time, lights_average_sky = average_sky;
@@ -75,6 +77,8 @@ void pool_variance(ColorLayers& a, int a_samples, const ColorLayers& b, int b_sa
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Renderer::~Renderer() = default;
 
+void Renderer::trace_as(const TracingBaseline& baseline) { impl_->baseline = baseline; }
+
 Image<float> raw_color(const ColorLayers& layers) {
   Image<float> sum = layers.direct;
   for (const Image<float>* layer : {&layers.indirect, &layers.specular, &layers.other})
@@ -118,8 +122,8 @@ ColorLayers Renderer::color_layers(const Projection& projection, double time,
   std::uint64_t rays = 0;
   for_each_line(projection, readout, time, [&](double t, const PixelWindow& window) {
     pose_line(impl_->embree, readout, t);
-    rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t, options), projection,
-                       camera(t), options, window, out);
+    rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t), projection, camera(t),
+                       options, window, out);
   });
   if (stats) stats->rays = rays;
   return out;
@@ -153,6 +157,7 @@ struct TruthContext {
   const Projection& projection;
   const TruthRequest& request;
   FlowMode mode;
+  bool single_rays;             // TracingBaseline's
   std::vector<Moment> targets;  // the pair's next moment, then request.more
   CameraAt camera;              // at the frame's time
 };
@@ -206,10 +211,10 @@ BundleRay truth_ray(const TruthContext& c, Vec2 pixel) {
 }
 
 // Embree's answers for up to kBundleSize rays: one packet (coherent rays: neighbouring pixels'
-// camera rays, their visibility rays from one target viewpoint), or each ray alone (0.11's way,
-// TruthRequest::single_rays). The same hits either way.
+// camera rays, their visibility rays from one target viewpoint), or each ray alone
+// (TracingBaseline::single_rays). The same hits either way.
 void intersect_all(const TruthContext& c, const BundleRay* rays, int count, Hit* hits) {
-  if (!c.request.single_rays) return c.scene.intersect_scene(rays, count, hits);
+  if (!c.single_rays) return c.scene.intersect_scene(rays, count, hits);
   for (int i = 0; i < count; ++i)
     naming_lane(i, [&] {
       hits[i] = rays[i].active ? c.scene.intersect(rays[i].origin, rays[i].direction) : Hit{};
@@ -218,7 +223,7 @@ void intersect_all(const TruthContext& c, const BundleRay* rays, int count, Hit*
 
 void occluded_all(const TruthContext& c, int target, const BundleRay* rays, int count,
                   bool* blocked) {
-  if (!c.request.single_rays) return c.scene.occluded(target, rays, count, blocked);
+  if (!c.single_rays) return c.scene.occluded(target, rays, count, blocked);
   for (int i = 0; i < count; ++i)
     naming_lane(i, [&] { blocked[i] = rays[i].active && c.scene.occluded(target, rays[i]); });
 }
@@ -288,13 +293,14 @@ void trace_truth_row(const TruthContext& c, int y, GroundTruth& out) {
 }
 
 TruthContext truth_context(EmbreeScene& scene, const ImageTextures& images,
-                           const Projection& projection, const TruthRequest& request,
-                           FlowMode mode) {
+                           const Projection& projection, const TruthRequest& request, FlowMode mode,
+                           bool single_rays) {
   TruthContext c{scene,
                  images,
                  projection,
                  request,
                  mode,
+                 single_rays,
                  {{request.pair.next_time, request.pair.next_rig}},
                  camera_at(request.pair.rig, projection)};
   c.targets.insert(c.targets.end(), request.more.begin(), request.more.end());
@@ -315,7 +321,8 @@ GroundTruth Renderer::ground_truth(const Projection& projection, const TruthRequ
                                    FlowMode mode) {
   if (!request.readout.global())
     return rolling_ground_truth(impl_->embree, impl_->images, projection, request);
-  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
+  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode,
+                                       impl_->baseline.single_rays);
   GroundTruth gt = allocate_truth(request, projection.width, projection.height);
   tbb::parallel_for(0, projection.height, [&](int y) { trace_truth_row(c, y, gt); });
   return gt;
@@ -325,7 +332,8 @@ GroundTruth Renderer::ground_truth_at(const Projection& projection, const TruthR
                                       const std::vector<Vec2>& pixels, FlowMode mode) {
   if (!request.readout.global())
     throw std::invalid_argument("ground truth at chosen pixels: global shutters only");
-  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode);
+  const TruthContext c = truth_context(impl_->embree, impl_->images, projection, request, mode,
+                                       impl_->baseline.single_rays);
   GroundTruth gt = allocate_truth(request, int(pixels.size()), 1);
   const std::size_t batches = (pixels.size() + kBundleSize - 1) / kBundleSize;
   tbb::parallel_for(std::size_t(0), batches, [&](std::size_t batch) {

@@ -178,7 +178,8 @@ TEST_CASE(
   config.height = 48, config.face_size = 48, config.spp = 8;  // the default samples: noise small
   const SequencePlan plan = plan_sequences(config).front();
   write_sequence(config, plan, dir.path / "new", {[] {}, [] {}});
-  write_sequence(config, plan, dir.path / "old", {[] {}, [] {}}, WriteOverlap::None);
+  const TracingBaseline earlier{.single_rays = true, .full_sky_when_scattered = true};
+  write_sequence(config, plan, dir.path / "old", {[] {}, [] {}}, &earlier);
   const fs::path now = sequence_dir(dir.path / "new", plan.name),
                  before = sequence_dir(dir.path / "old", plan.name);
   const ReleaseLayout layout = release_layout(config);

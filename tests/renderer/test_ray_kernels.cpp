@@ -167,9 +167,9 @@ TEST_CASE("a ray Embree cannot take is an error naming the camera and pixel, nev
   options.samples_per_pixel = 2;
   throws_ray_error([&] { renderer.color(pinhole, far_away(), options); }, 12, 8);
   throws_ray_error([&] { renderer.ground_truth(pinhole, far_away()); }, 12, 8);
-  TruthRequest one_by_one{far_away()};
-  one_by_one.single_rays = true;
-  throws_ray_error([&] { renderer.ground_truth(pinhole, one_by_one); }, 12, 8);
+  Renderer one_by_one(room);
+  one_by_one.trace_as({.single_rays = true});
+  throws_ray_error([&] { one_by_one.ground_truth(pinhole, far_away()); }, 12, 8);
   throws_ray_error(
       [&] { renderer.ground_truth_at(pinhole, TruthRequest{far_away()}, {Vec2(3.5, 2.5)}); }, 1, 1);
   const CameraTrack far_track = [](double) { return far_away().rig; };

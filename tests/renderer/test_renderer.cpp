@@ -377,10 +377,9 @@ TEST_CASE(
   const double irradiance = kPi * 50 * (std::pow(std::sin(e1), 2) - std::pow(std::sin(e0), 2));
   Renderer renderer(scene);
   for (bool full_sky : {false, true}) {  // flowscape 0.11 took the dome's own cells
-    RenderOptions options{256, 1, 5};
-    options.full_sky_when_scattered = full_sky;
-    const Image<float> down =
-        renderer.color(Projection::cube_face(Face::Down, 16), FramePair{}, options);
+    renderer.trace_as({.full_sky_when_scattered = full_sky});
+    const Image<float> down = renderer.color(Projection::cube_face(Face::Down, 16), FramePair{},
+                                             RenderOptions{256, 1, 5});
     double mean = 0;
     for (std::size_t i = 0; i < down.pixel_count(); ++i) mean += down.data[3 * i];
     CHECK(mean / double(down.pixel_count()) == Approx(0.5 * irradiance / kPi).epsilon(0.02));

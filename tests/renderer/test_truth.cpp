@@ -91,7 +91,8 @@ TEST_CASE(
     "ground truth traced in Embree packets has every byte of the same traced ray by ray (0.11's "
     "way), whole images and chosen pixels") {
   Scene scene = room_with_actor();
-  Renderer renderer(scene);
+  Renderer renderer(scene), one_by_one(scene);
+  one_by_one.trace_as({.single_rays = true});
   const auto same_bytes = [](const auto& a, const auto& b) {
     return a.data.size() == b.data.size() &&
            std::memcmp(a.data.data(), b.data.data(), a.data.size() * sizeof(a.data[0])) == 0;
@@ -110,13 +111,11 @@ TEST_CASE(
   TruthRequest packets = request(t, 1);
   packets.more = {{t - kDt, driving_rig(t - kDt)}, {t + 2 * kDt, driving_rig(t + 2 * kDt)}};
   packets.scene_flow = packets.normal = packets.shading_normal = true;
-  TruthRequest single = packets;
-  single.single_rays = true;
   long valid = 0, hidden = 0;  // the comparison covers points seen and hidden at the targets
   for (const View& view : views()) {
     INFO(view.name);
     const GroundTruth a = renderer.ground_truth(view.projection, packets);
-    const GroundTruth b = renderer.ground_truth(view.projection, single);
+    const GroundTruth b = one_by_one.ground_truth(view.projection, packets);
     CHECK(same_truth(a, b));
     for (const auto* mask : {&a.valid, &a.more[0].valid, &a.more[1].valid})
       for (std::uint8_t v : mask->data) valid += v, hidden += !v;
@@ -127,7 +126,7 @@ TEST_CASE(
   for (int k = 0; k < 37; ++k) chosen.emplace_back(0.37 + 0.83 * k, 3.1 + 0.41 * k);
   const Projection erp = Projection::equirectangular(32);
   CHECK(same_truth(renderer.ground_truth_at(erp, packets, chosen),
-                   renderer.ground_truth_at(erp, single, chosen)));
+                   one_by_one.ground_truth_at(erp, packets, chosen)));
 }
 
 TEST_CASE("backward flow is the ground truth of the reversed pair: valid where the target shows") {

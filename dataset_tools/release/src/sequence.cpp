@@ -83,7 +83,6 @@ TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int 
   plan.request.normal = layout.has("normal");
   plan.request.shading_normal = layout.has("normal_shading");
   plan.request.camera_on_rig = true;
-  plan.request.single_rays = sequence.spec.earlier_renderer;
   plan.request.track = [&sequence](double t) { return sequence.city.rig(t); };
   return plan;
 }
@@ -93,7 +92,6 @@ std::uint64_t Sequence::color_seed(int frame) const { return derived_seed(spec.s
 RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) const {
   RenderOptions options{config.spp, config.max_bounces, color_seed(frame)};
   options.indirect_samples = indirect_samples(config);
-  options.full_sky_when_scattered = spec.earlier_renderer;
   return options;
 }
 

@@ -161,7 +161,7 @@ nlohmann::json recorded_config(const fs::path& out) {
 }  // namespace
 
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const fs::path& out,
-                    const SequenceProgress& progress, WriteOverlap overlap) {
+                    const SequenceProgress& progress, const TracingBaseline* baseline) {
   const fs::path dir = sequence_dir(out, plan.name);
   const ReleaseLayout layout = release_layout(config);
   fs::create_directories(dir);
@@ -176,9 +176,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   const bool has_meta = meta_readable(dir);
   if (frames_to_render.empty() && has_meta) return;
   std::optional<ScopedPhase> setting_up(std::in_place, "scene set-up: city and models");
-  SequenceSpec spec = sequence_spec(config, plan);
-  spec.earlier_renderer = overlap == WriteOverlap::None;
-  const Sequence sequence = make_sequence(spec);
+  const Sequence sequence = make_sequence(sequence_spec(config, plan));
   setting_up.reset();
   // of every frame: those rendered now as they are written, the others read back
   const View view = statistics_view(layout);
@@ -197,7 +195,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
                             ? make_cube_to_erp(config.face_size, config.height)
                             : CubeToErp{};
   const Projection& metering = rig.cameras.front().projection;  // the flowscape rig's: its ERP
-  // frame f's files are written while frame f + 1 renders (one frame in flight: WriteOverlap)
+  // frame f's files are written while frame f + 1 renders (one frame in flight)
   std::future<void> writing;
   const auto write = [&](int f, FrameImages images) {
     statistics[std::size_t(f)] = write_frame(dir, layout, f, config.frames, images);
@@ -215,6 +213,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     if (!renderer) {
       const ScopedPhase phase("scene set-up: BVHs and textures");
       renderer = std::make_unique<Renderer>(sequence.city.scene);
+      if (baseline) renderer->trace_as(*baseline);
     }
     Exposure* frame_exposure = final ? &exposure : nullptr;
     FrameImages images = [&] {
@@ -228,7 +227,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     }();
     if (final) exposures[std::size_t(f)] = exposure;
     if (writing.valid()) writing.get();  // its errors surface here
-    if (overlap == WriteOverlap::None) {
+    if (baseline) {
       write(f, std::move(images));
       continue;
     }

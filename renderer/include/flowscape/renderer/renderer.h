@@ -48,9 +48,6 @@ struct TruthRequest {
   // times (docs/cameras.md, "Rolling shutter").
   Readout readout{};
   CameraTrack track{};
-  // flowscape 0.11's tracing, for bench_release: each camera ray alone rather than a row's 16
-  // neighbours as one Embree packet (the same hits, so the same bytes).
-  bool single_rays = false;
 };
 
 struct FlowTruth {
@@ -82,10 +79,6 @@ struct RenderOptions {
   // bounces that gather its indirect light), weighted to stand for all; 0: every sample. The rest
   // still bring the camera ray, the sun's direct light, the specular chains and the features.
   int indirect_samples = 0;
-  // flowscape 0.11's path tracer, for bench_release's baseline: paths that scattered diffusely
-  // find the sky at the dome's full resolution (not averaged as SkySampler's: larger tables, more
-  // cache misses).
-  bool full_sky_when_scattered = false;
   // Where set (the image's size; for render_cube the stacked faces'), only the pixels where it is
   // non-zero are traced and the others' layers stay zero: adaptive sampling's second pass. A
   // pixel's samples are the same as in a render of every pixel.
@@ -135,6 +128,18 @@ struct RenderStats {
   std::uint64_t rays = 0;  // camera, bounce and shadow rays traced
 };
 
+// Ways of tracing that earlier versions used, kept only as bench_release's baseline (what the
+// current ones gain) and for the tests that show the ground truth the same either way. No release
+// sets them (Renderer::trace_as).
+struct TracingBaseline {
+  // Ground truth: each camera and visibility ray handed to Embree alone rather than a row's 16
+  // neighbours as one packet (the same hits, so the same bytes).
+  bool single_rays = false;
+  // Colour: paths that scattered diffusely find the sky at the dome's full resolution, not averaged
+  // as SkySampler's blocks (larger tables, more cache misses).
+  bool full_sky_when_scattered = false;
+};
+
 class Renderer {
  public:
   explicit Renderer(const Scene& scene);  // holds on to `scene`: it must outlive the renderer
@@ -142,6 +147,8 @@ class Renderer {
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
+  // From now on, trace as the baseline says (benchmarks and tests only).
+  void trace_as(const TracingBaseline& baseline);
 
   // Flow: the hit point, fixed on its object, moved to the object's pose at next_time and projected
   // by the camera at next_time; the sky moves with the rig's rotation only.

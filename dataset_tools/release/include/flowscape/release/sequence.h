@@ -36,9 +36,6 @@ struct SequenceSpec {
   std::vector<ScriptedActor> scripted{};  // actors placed one by one (scenario.h)
   double frame_rate = kFrameRate;         // frames per second
   double lane_change_at = 1.0;            // seconds (EgoRoute::LaneChange)
-  // flowscape 0.10's path tracer and ground-truth tracing (RenderOptions::full_sky_when_scattered,
-  // TruthRequest::single_rays), for bench_release's baseline
-  bool earlier_renderer = false;
 };
 // The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
 // start follows from its seed, its route from the plan's `turns` or the scenario file).

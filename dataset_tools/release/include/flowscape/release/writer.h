@@ -10,18 +10,16 @@ namespace flowscape {
 struct SequenceProgress {
   std::function<void()> frame_done, frame_skipped;
 };
-// How a sequence is written: the current way (Frame: a frame's files are written while the next
-// frame renders, one frame in flight, so the cores stay busy while files are encoded) or
-// flowscape 0.10's, a baseline for bench_release (None: each frame's files written before the next
-// renders, by 0.10's renderer: SequenceSpec::earlier_renderer). The ground-truth bytes are the same
-// either way, the colour within its noise (docs/release.md, "Speed").
-enum class WriteOverlap : std::uint8_t { Frame, None };
 // Renders and writes one sequence: every frame whose files are not all there and complete yet
 // (formats/complete_file.h; temporary files a killed run left are removed first), then meta.json.
-// Files appear atomically; the same config gives the same bytes whatever the thread count.
+// Files appear atomically; the same config gives the same bytes whatever the thread count. A
+// frame's files are written while the next frame renders (one frame in flight, so the cores stay
+// busy while files are encoded). `baseline` (bench_release's only): each frame's files written
+// before the next renders, traced as it says; the ground-truth bytes are the same, the colour
+// within its noise (docs/release.md, "Speed").
 void write_sequence(const ReleaseConfig& config, const SequencePlan& plan,
                     const std::filesystem::path& out, const SequenceProgress& progress,
-                    WriteOverlap overlap = WriteOverlap::Frame);
+                    const TracingBaseline* baseline = nullptr);
 
 // Records the config in <out>/config.json before anything else. If `out` already holds a release
 // made with another config (config.json, or manifest.json's), refuses with a FileError naming the
