@@ -1,6 +1,6 @@
 """pip builds the plugin's C++ extension (flowscape_native: OpenImageIO image reading, remapping)
-where it can: a plugin-only CMake build of the repository around this folder (core, stitcher,
-formats; Eigen, OpenImageIO, OpenCV, TBB, pybind11 from Debian). Without a compiler, CMake or
+where it can: a plugin-only CMake build of the repository around this folder (core, geometry,
+stitcher, formats; Eigen, OpenImageIO, OpenCV, TBB, pybind11 from Debian). Without a compiler, CMake or
 those libraries, or outside the repository (an sdist), it says why and installs the package as
 pure Python, which reads files through its numpy fallback; FLOWSCAPE_REQUIRE_EXTENSION=1 makes
 that an error instead, FLOWSCAPE_PURE_PYTHON=1 skips the extension."""

@@ -14,7 +14,8 @@ root = Path(sys.argv[1])
 
 # library -> (its folder, the include prefix of its headers)
 LIBRARIES = {
-    "core": "core", "stitcher": "stitcher", "formats": "dataset_tools/formats",
+    "core": "core", "geometry": "stitcher/geometry", "stitcher": "stitcher",
+    "formats": "dataset_tools/formats",
     "scenes": "scenes", "weather": "weather", "renderer": "renderer",
     "layout": "dataset_tools/layout", "release": "dataset_tools/release",
     "quality": "dataset_tools/quality",

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <string>
 
+#include "flowscape/geometry/geometry.h"
 #include "flowscape/renderer/renderer.h"
-#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "flowscape/geometry/geometry.h"
 #include "flowscape/renderer/renderer.h"
 #include "flowscape/scenes/scene.h"
-#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 

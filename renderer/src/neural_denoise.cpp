@@ -9,7 +9,7 @@
 
 #include "flowscape/core/files.h"
 #include "flowscape/core/sha256.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 #include "cube_faces.h"
 #include "embree_scene.h"
 #include "flowscape/core/profile.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 #include "image_textures.h"
 #include "path_tracer.h"
 #include "truth.h"

@@ -6,7 +6,7 @@
 
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 #include "temp_dir.h"
 
 using namespace flowscape;

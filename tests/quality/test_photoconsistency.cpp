@@ -1,8 +1,8 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "flowscape/geometry/geometry.h"
 #include "flowscape/quality/photoconsistency.h"
-#include "flowscape/stitcher/geometry.h"
 #include "shifted_pattern.h"
 
 using namespace flowscape;

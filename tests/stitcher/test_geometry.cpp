@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 #include "independent_math.h"
 
 using namespace flowscape;

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "flowscape/formats/image_io.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 namespace {

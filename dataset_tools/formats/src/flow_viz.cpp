@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 namespace {

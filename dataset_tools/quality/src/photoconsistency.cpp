@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 namespace {

@@ -122,7 +122,8 @@ ReleaseLayout release_layout(const ReleaseConfig& c) {
   ReleaseLayout layout =
       ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube, flow_format_from_name(c.flow_format));
   const Rig rig = release_rig(c);
-  if (!rig.flowscape)  // its views are the ERP's and the faces' (ReleaseLayout::of)
+  layout.flowscape_views = rig.flowscape;
+  if (!rig.flowscape)
     for (const RigCamera& camera : rig.cameras)
       layout.cameras.push_back({camera.name, camera.projection.wraps_around()});
   return layout;

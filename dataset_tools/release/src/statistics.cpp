@@ -9,10 +9,10 @@
 #include "flowscape/core/files.h"
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
+#include "flowscape/geometry/geometry.h"
 #include "flowscape/layout/classes.h"
 #include "flowscape/layout/meta.h"
 #include "flowscape/scenes/model_io.h"
-#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 namespace fs = std::filesystem;

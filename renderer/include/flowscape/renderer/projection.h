@@ -4,8 +4,8 @@
 #include <memory>
 #include <optional>
 
+#include "flowscape/geometry/geometry.h"
 #include "flowscape/renderer/lens.h"
-#include "flowscape/stitcher/geometry.h"
 
 namespace flowscape {
 

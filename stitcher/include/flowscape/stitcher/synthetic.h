@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "flowscape/core/image.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 

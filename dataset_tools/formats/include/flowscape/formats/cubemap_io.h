@@ -7,7 +7,7 @@
 
 #include "flowscape/formats/flow_io.h"
 #include "flowscape/formats/image_io.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 

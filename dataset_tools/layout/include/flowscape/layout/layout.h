@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "flowscape/formats/flow_io.h"
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 
@@ -167,10 +167,13 @@ struct LayoutCamera {
 struct ReleaseLayout {
   std::vector<ReleaseKind> kinds;
   bool cube = true;
-  std::vector<LayoutCamera> cameras;  // non-empty: another rig than flowscape (no ERP, no faces)
+  // The flowscape rig's views (erp/ and, with `cube`, cube/<face>/); false: another rig's
+  // `cameras`, each in cameras/<name>/.
+  bool flowscape_views = true;
+  std::vector<LayoutCamera> cameras;
   FlowFormat flow_format = FlowFormat::Flo;  // every flow kind's (ReleaseKind::flow_format)
 
-  bool has_erp() const { return cameras.empty(); }
+  bool has_erp() const { return flowscape_views; }
   std::vector<View> views() const;  // the ERP, the faces, or the cameras
 
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 namespace flowscape {
 

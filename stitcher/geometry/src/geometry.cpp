@@ -1,4 +1,4 @@
-#include "flowscape/stitcher/geometry.h"
+#include "flowscape/geometry/geometry.h"
 
 #include <cmath>
 
