@@ -45,6 +45,7 @@ configs=(
   "classes:${tiny[*]} --maps 1 --spp 2 --classes carla-0.9.14"
   "legacy:${tiny[*]} --maps 1 --spp 2 --actors legacy"
   "erp-only:${tiny[*]} --maps 1 --spp 2 --no-cube"
+  "erp-final:${tiny[*]} --maps 1 --spp 2 --no-cube --outputs final --time-of-day night,day"
   "fisheye:${lenses[*]} --rig fisheye --resolution 24 --outputs final"
   "woodscape:${lenses[*]} --rig woodscape --resolution 16"
   "pal:${lenses[*]} --rig pal --resolution 24"

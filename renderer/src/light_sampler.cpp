@@ -10,11 +10,6 @@ namespace {
 
 constexpr double kFar = std::numeric_limits<double>::infinity();
 
-// The share of the light along a shadow ray of `length` that the fog lets through.
-double fog_transmittance(const Lights& lights, const Vec3& origin, const Vec3& dir, double length) {
-  return lights.foggy() ? std::exp(-lights.optical_depth(origin, dir, length)) : 1;
-}
-
 // Direct light from the sun on a diffuse surface (the sun is too small to hit by chance), seen
 // through the fog.
 ShadowRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, const Rgb& throughput,
@@ -23,7 +18,7 @@ ShadowRay sun_ray(const Lights& lights, const Surface& s, const Vec3& origin, co
   const Vec3 to_sun = lights.sun_sample(u);
   const double cos_n = to_sun.dot(s.normal);
   if (cos_n <= 0 || to_sun.dot(s.geometric) <= 0) return {};
-  const double fog = fog_transmittance(lights, origin, to_sun, kFar);
+  const double fog = lights.fog.transmittance(origin, to_sun, kFar);
   return {
       {origin, to_sun, true},
       throughput.cwiseProduct(s.albedo).cwiseProduct(lights.sun_irradiance) * (cos_n / kPi * fog),
@@ -35,7 +30,7 @@ ShadowRay lamp_ray(const Lights& lights, const LampLights::Sample& lamp, const S
                    const Vec3& origin, const Rgb& throughput, Layer layer) {
   const double cos_n = lamp.direction.dot(s.normal);
   if (lamp.irradiance.isZero() || cos_n <= 0 || lamp.direction.dot(s.geometric) <= 0) return {};
-  const double fog = fog_transmittance(lights, origin, lamp.direction, lamp.distance);
+  const double fog = lights.fog.transmittance(origin, lamp.direction, lamp.distance);
   return {{origin, lamp.direction, true, float(lamp.distance * (1 - 1e-4))},
           throughput.cwiseProduct(s.albedo).cwiseProduct(lamp.irradiance) * (cos_n / kPi * fog),
           layer};
@@ -54,7 +49,7 @@ ShadowRay sky_ray(const Lights& lights, const Surface& s, const Vec3& origin, co
   if (cos_n <= 0 || dir.dot(s.geometric) <= 0) return {};
   const double light_pdf = chance * lights.sky.pdf(dir);
   const double bounce_pdf = std::max(0.0, dir.dot(bounce_normal)) / kPi;
-  const double fog = fog_transmittance(lights, origin, dir, kFar);
+  const double fog = lights.fog.transmittance(origin, dir, kFar);
   const Rgb light =
       throughput.cwiseProduct(s.albedo).cwiseProduct(lights.scattered_sky_radiance(dir)) *
       (cos_n / kPi * fog / (light_pdf + bounce_pdf));

@@ -1,11 +1,12 @@
 #pragma once
-// Internal: the sun, the sky and the height fog of an Environment, with what every sample needs
-// computed once per frame. The fog is integrated in closed form along every ray segment
-// (transmittance and single scattering), so it adds no noise.
+// Internal: the sun, the sky, the lamps and the air (the fog, fog_medium.h) of a scene, with what
+// every sample needs computed once per frame. The fog is integrated in closed form along every ray
+// segment (transmittance and single scattering), so it adds no noise.
 #include <Eigen/Core>
 #include <vector>
 
 #include "flowscape/scenes/scene.h"
+#include "fog_medium.h"
 
 namespace flowscape {
 
@@ -82,23 +83,16 @@ struct Lights {
   // A direction towards the sun disc, uniform over its solid angle.
   Vec3 sun_sample(Vec2 u) const;
 
-  bool foggy() const { return environment.fog.density > 0; }
-  // Optical depth of the fog along o + s d for s in [0, t] (t may be infinite).
-  double optical_depth(const Vec3& o, const Vec3& d, double t) const;
-  // Light the fog scatters towards o along the segment o + s d, s in [0, t] (single scattering of
-  // the sun and of the sky's mean radiance; the sun's light is not shadowed inside the fog).
-  Rgb inscattered(const Vec3& o, const Vec3& d, double t) const;
-
   const Environment& environment;
   LampLights lamps;
   SkySampler sky;
   Mat3 sun_frame;
   double sun_cos_radius;
   Rgb sun_irradiance, sun_disc_radiance, sky_mean;
+  FogMedium fog;  // the air between (fog_medium.h)
 
  private:
   static Eigen::Vector3f upper_mean(const Environment& environment);
-  double fog_extinction(double z) const;
 };
 
 }  // namespace flowscape

@@ -38,11 +38,11 @@ struct FrameContext {
 
 // The fog between the path's origin and `distance` along it: the light it scatters in, and the
 // light it lets through.
-void cross_fog(const Lights& lights, double distance, PathState& path) {
-  if (!lights.foggy()) return;
+void cross_fog(const FogMedium& fog, double distance, PathState& path) {
+  if (!fog.present()) return;
   path.light[path.layer] +=
-      path.throughput.cwiseProduct(lights.inscattered(path.origin, path.dir, distance));
-  path.throughput *= std::exp(-lights.optical_depth(path.origin, path.dir, distance));
+      path.throughput.cwiseProduct(fog.inscattered(path.origin, path.dir, distance));
+  path.throughput *= std::exp(-fog.optical_depth(path.origin, path.dir, distance));
 }
 
 // One bounce of a path at `hit`: the fog before it, the sky and sun disc where it finds nothing,
@@ -52,7 +52,7 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
              Sampler& sampler, PathState& path, ShadowRay& shadow) {
   const Lights& lights = frame.lights;
   const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
-  cross_fog(lights, hit.found ? hit.distance : kFar, path);
+  cross_fog(lights.fog, hit.found ? hit.distance : kFar, path);
   if (!hit.found) {
     const Vec3& dir = path.dir;
     path.light[path.layer] += path.throughput.cwiseProduct(

@@ -77,99 +77,122 @@ CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection
   return images;
 }
 
-// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
-// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
-// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
-// previous frame) becomes this frame's.
-FrameImages render_flowscape_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                                   const Rig& rig, const Sequence& sequence, Renderer& renderer,
-                                   const CubeToErp* map, int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
-  const Projection& erp = rig.cameras.front().projection;
-  GroundTruth truth = [&] {
-    const ScopedPhase phase("ground truth");
-    return renderer.ground_truth(erp, plan.request);
-  }();
-  Image<float> erp_color;
-  ColorLayers erp_layers;  // without faces
-  CubeFrame cube;
-  Image<float> faces_color;
-  if (map) {
-    cube = render_cube(renderer, config.face_size, plan.request, nullptr);
-    cube.color = release_cube_layers(config, sequence, renderer, cube.truth, frame);
-    faces_color = denoised_cube_color(config, cube.color, cube.truth);
+// A directly rendered camera: the ERP of the flowscape rig without faces, or a rig's camera.
+struct DirectCamera {
+  const Projection& projection;
+  const TruthRequest& request;  // what its colour is traced for
+  CameraTrack track;            // where it is over the final pass's shutter
+  Readout readout;
+  bool real_lens;  // a physical camera (vignetting, drops and dirt), not a virtual one
+  int view;        // its number in the rig: the final pass's noise stream
+  bool meters;     // its clean light sets the final pass's exposure
+};
+struct CameraColor {
+  ColorLayers layers;
+  Image<std::uint8_t> clean, final;
+};
+
+// Its colour: the layers path traced, the release's denoiser, sRGB; with the final pass (exposure
+// not null) its shutter, sensor and development.
+CameraColor camera_color(const FramePipeline& p, const DirectCamera& camera, int frame,
+                         const GroundTruth& truth, Exposure* exposure) {
+  CameraColor out;
+  out.layers = release_layers(p.config, p.sequence, p.renderer, camera.projection, camera.request,
+                              frame, truth);
+  const Image<float> color = denoised_color(p.config, out.layers, camera.projection,
+                                            truth.depth.view(), truth.instance.view());
+  out.clean = linear_to_srgb8(color.view());
+  if (!exposure) return out;
+  const ScopedPhase phase("final pass");
+  if (camera.meters)
+    *exposure =
+        exposure_after(p.config, p.sequence, *exposure, out.clean.view(), camera.projection, frame);
+  const Image<float> linear =
+      final_color(p.config, p.sequence, p.renderer, camera.projection, camera.track, frame,
+                  camera.readout, out.layers, truth.depth);
+  out.final = develop(p.config, p.sequence, linear.view(), camera.projection, camera.real_lens,
+                      *exposure, frame, camera.view);
+  return out;
+}
+
+GroundTruth timed_truth(Renderer& renderer, const Projection& camera, const TruthRequest& request) {
+  const ScopedPhase phase("ground truth");
+  return renderer.ground_truth(camera, request);
+}
+
+// The flowscape rig's faces and the ERP stitched from them: the faces path traced and denoised
+// face by face, the ERP colour resampled from theirs (the final pass's likewise).
+FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan, int frame,
+                                   GroundTruth erp_truth, Exposure* exposure) {
+  const ReleaseConfig& config = p.config;
+  const Projection& erp = p.rig.cameras.front().projection;
+  CubeFrame cube = render_cube(p.renderer, config.face_size, plan.request, nullptr);
+  cube.color = release_cube_layers(config, p.sequence, p.renderer, cube.truth, frame);
+  const Image<float> faces_color = denoised_cube_color(config, cube.color, cube.truth);
+  const Image<float> erp_color = [&] {
     const ScopedPhase phase("cube to ERP");
-    erp_color = resample_bilinear(map->sampling, faces_color);
-  } else {
-    erp_layers = release_layers(config, sequence, renderer, erp,
-                                TruthRequest{sequence.frame_pair(frame)}, frame, truth);
-    erp_color = denoised_color(config, erp_layers, erp, truth.depth.view(), truth.instance.view());
-  }
+    return resample_bilinear(p.cube_to_erp->sampling, faces_color);
+  }();
   Image<std::uint8_t> erp_clean = linear_to_srgb8(erp_color.view());
   FinalFlowscape final;
   if (exposure) {
     const ScopedPhase phase("final pass");
-    *exposure = exposure_after(config, sequence, *exposure, erp_clean.view(), erp, frame);
-    if (map) {
-      final = final_flowscape(config, sequence, renderer, *map, *exposure, frame, cube);
-    } else {
-      const Image<float> linear = final_color(
-          config, sequence, renderer, erp, [&](double t) { return sequence.city.rig(t); }, frame,
-          {}, erp_layers, truth.depth);
-      final.erp = develop(config, sequence, linear.view(), erp, false, *exposure, frame, 0);
-    }
+    *exposure = exposure_after(config, p.sequence, *exposure, erp_clean.view(), erp, frame);
+    final = final_flowscape(config, p.sequence, p.renderer, *p.cube_to_erp, *exposure, frame, cube);
   }
   FrameImages images;
-  if (map) {
-    const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
-    images.cube = view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()),
-                              plan.steps, class_table(config.classes),
-                              virtual_camera_images(layout, faces, plan, std::move(final.faces)));
-  }
+  const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
+  images.cube = view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps,
+                            class_table(config.classes),
+                            virtual_camera_images(p.layout, faces, plan, std::move(final.faces)));
   images.views.emplace_back(
-      View(),
-      view_images(std::move(truth), std::move(erp_clean), plan.steps, class_table(config.classes),
-                  virtual_camera_images(layout, erp, plan, std::move(final.erp))));
+      View(), view_images(std::move(erp_truth), std::move(erp_clean), plan.steps,
+                          class_table(config.classes),
+                          virtual_camera_images(p.layout, erp, plan, std::move(final.erp))));
+  return images;
+}
+
+// The flowscape rig: the ERP colour is stitched from the cube faces' (denoised face by face) when
+// there are faces, else rendered and denoised directly; the ERP ground truth is always ray cast
+// directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
+// previous frame) becomes this frame's.
+FrameImages render_flowscape_frame(const FramePipeline& p, int frame, Exposure* exposure) {
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.config.frames);
+  const Projection& erp = p.rig.cameras.front().projection;
+  GroundTruth truth = timed_truth(p.renderer, erp, plan.request);
+  if (p.cube_to_erp) return faces_and_stitched_erp(p, plan, frame, std::move(truth), exposure);
+  const TruthRequest pair{p.sequence.frame_pair(frame)};
+  const Sequence& sequence = p.sequence;
+  CameraColor color = camera_color(
+      p, {erp, pair, [&](double t) { return sequence.city.rig(t); }, {}, false, 0, true}, frame,
+      truth, exposure);
+  FrameImages images;
+  images.views.emplace_back(
+      View(), view_images(std::move(truth), std::move(color.clean), plan.steps,
+                          class_table(p.config.classes),
+                          virtual_camera_images(p.layout, erp, plan, std::move(color.final))));
   return images;
 }
 
 // Another rig: every camera ray cast and path traced directly from its own optical centre.
-FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& layout,
-                             const Rig& rig, const Sequence& sequence, Renderer& renderer,
-                             int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(sequence, layout, frame, config.frames);
+FrameImages render_rig_frame(const FramePipeline& p, int frame, Exposure* exposure) {
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.config.frames);
   FrameImages images;
-  for (const RigCamera& camera : rig.cameras) try {
-      const int view = int(&camera - rig.cameras.data());
+  for (const RigCamera& camera : p.rig.cameras) try {
+      const int view = int(&camera - p.rig.cameras.data());
       const TruthRequest request = at_camera(plan.request, camera);
-      GroundTruth truth = [&] {
-        const ScopedPhase phase("ground truth");
-        return renderer.ground_truth(camera.projection, request);
-      }();
-      const ColorLayers layers =
-          release_layers(config, sequence, renderer, camera.projection, request, frame, truth);
-      const Image<float> color = denoised_color(config, layers, camera.projection,
-                                                truth.depth.view(), truth.instance.view());
-      Image<std::uint8_t> clean = linear_to_srgb8(color.view()), final;
-      if (exposure) {
-        const ScopedPhase phase("final pass");
-        if (&camera == &rig.cameras.front())  // the first camera's light sets the exposure
-          *exposure =
-              exposure_after(config, sequence, *exposure, clean.view(), camera.projection, frame);
-        const Image<float> linear =
-            final_color(config, sequence, renderer, camera.projection, request.track, frame,
-                        camera.readout, layers, truth.depth);
-        final = develop(config, sequence, linear.view(), camera.projection, true, *exposure, frame,
-                        view);
-      }
-      CameraImages extras{std::move(final)};
-      if (layout.has("time"))
+      GroundTruth truth = timed_truth(p.renderer, camera.projection, request);
+      CameraColor color = camera_color(
+          p, {camera.projection, request, request.track, camera.readout, true, view, view == 0},
+          frame, truth, exposure);
+      CameraImages extras{std::move(color.final)};
+      if (p.layout.has("time"))
         extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
-      if (layout.has("lens_mask"))
-        extras.lens_mask = release_lens_mask(config, sequence, camera.projection, view);
-      images.views.emplace_back(view_of(rig, camera),
-                                view_images(std::move(truth), std::move(clean), plan.steps,
-                                            class_table(config.classes), std::move(extras)));
+      if (p.layout.has("lens_mask"))
+        extras.lens_mask = release_lens_mask(p.config, p.sequence, camera.projection, view);
+      images.views.emplace_back(view_of(p.rig, camera),
+                                view_images(std::move(truth), std::move(color.clean), plan.steps,
+                                            class_table(p.config.classes), std::move(extras)));
     } catch (const RayError& e) {
       throw e.of_camera(camera.name);
     }
@@ -179,10 +202,8 @@ FrameImages render_rig_frame(const ReleaseConfig& config, const ReleaseLayout& l
 }  // namespace
 
 FrameImages render_frame(const FramePipeline& p, int frame, Exposure* exposure) {
-  return p.rig.flowscape
-             ? render_flowscape_frame(p.config, p.layout, p.rig, p.sequence, p.renderer,
-                                      p.cube_to_erp, frame, exposure)
-             : render_rig_frame(p.config, p.layout, p.rig, p.sequence, p.renderer, frame, exposure);
+  return p.rig.flowscape ? render_flowscape_frame(p, frame, exposure)
+                         : render_rig_frame(p, frame, exposure);
 }
 
 }  // namespace flowscape
