@@ -60,12 +60,23 @@ FramePair plan_view(const City& city, double time) {
   return {time, time + 1 / kFrameRate, rig, rig};
 }
 
+// A preview's sequence of map `map`: the options' traffic and ego start, the ego driving free,
+// `frames` frames, the actors and ego as `config` says.
+SequenceSpec preview_spec(const Options& o, const ReleaseConfig& config, int map,
+                          const std::string& weather, int frames) {
+  SequenceSpec spec;
+  CityConfig& city = spec.city;
+  city.map = map, city.seed = o.seed, city.vehicles = o.vehicles, city.pedestrians = o.pedestrians;
+  city.ego_start = o.ego_start, city.ego_route = EgoRoute::Free, city.models = o.models;
+  set_actors(spec, config);
+  spec.weather = weather, spec.frames = frames;
+  return spec;
+}
+
 // One row of the plan sheet: colour and semantics of map `map` seen from above.
 std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map,         "sunny",        o.seed,    o.vehicles, o.pedestrians,
-                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
-  set_actors(spec, o.color);
+  const SequenceSpec spec = preview_spec(o, o.color, map, "sunny", frame + 2);
   const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
@@ -129,9 +140,7 @@ std::vector<Image<std::uint8_t>> render_row(const Options& o, int map, const std
                                             const std::string& time_of_day = "day",
                                             const std::string& sky = "physical") {
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map,         weather,        o.seed,    o.vehicles, o.pedestrians,
-                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
-  set_actors(spec, o.color);
+  SequenceSpec spec = preview_spec(o, o.color, map, weather, frame + 2);
   spec.time_of_day = time_of_day, spec.sky = sky;
   std::vector<Image<std::uint8_t>> row =
       erp_row(o, o.color, make_sequence(spec), frame, map_name(map));
@@ -195,9 +204,7 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     return rows;
   }
   const int frame = int(std::lround(o.time * kFrameRate));
-  SequenceSpec spec{map,         "sunny",        o.seed,    o.vehicles, o.pedestrians,
-                    o.ego_start, EgoRoute::Free, frame + 2, o.models};
-  set_actors(spec, config);
+  const SequenceSpec spec = preview_spec(o, config, map, "sunny", frame + 2);
   const Sequence sequence = make_sequence(spec);
   Renderer renderer(sequence.city.scene);
   std::vector<std::vector<Image<std::uint8_t>>> rows;

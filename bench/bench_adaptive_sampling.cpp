@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   const ReleaseConfig defaults;
   const int frame = 30;
   SequenceSpec spec = sequence_spec(defaults, plan_sequences(defaults).front());
-  spec.ego_route = EgoRoute::Free;  // bench_image_quality's frame
+  spec.city.ego_route = EgoRoute::Free;  // bench_image_quality's frame
   std::printf(
       "bench_adaptive_sampling: downtown frame %d, %d x %d ERP, reference %d spp, 2 threads; "
       "adaptive: %.0f %% of the pixels take the second pass\n",

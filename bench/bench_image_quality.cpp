@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   std::vector<std::vector<double>> table(variants.size());
   std::vector<double> sky_bias;
   SequenceSpec spec = sequence_spec(defaults, plan);
-  spec.ego_route = EgoRoute::Free;  // the frame its figures were of
+  spec.city.ego_route = EgoRoute::Free;  // the frame its figures were of
   for (const char* weather : {"sunny", "cloud", "fog", "rain"}) {
     spec.weather = weather;
     Setup s(spec, frame, height, reference_spp);

@@ -198,14 +198,14 @@ TEST_CASE("the sequence mix: every third turns, the others drive; free as before
   config.maps = 2, config.sequences_per_map = 4;
   std::vector<EgoRoute> routes;
   for (const SequencePlan& plan : plan_sequences(config))
-    routes.push_back(sequence_spec(config, plan).ego_route);
+    routes.push_back(sequence_spec(config, plan).city.ego_route);
   // numbers 2, 5: floor((n + 1) / 3) > floor(n / 3)
   const EgoRoute D = EgoRoute::Drive, T = EgoRoute::Turn;
   CHECK(routes == std::vector<EgoRoute>{D, D, T, D, D, T, D, D});
   config.ego_routes = "free";
   for (const SequencePlan& plan : plan_sequences(config)) {
     CHECK_FALSE(plan.turns);
-    CHECK(sequence_spec(config, plan).ego_route == EgoRoute::Free);
+    CHECK(sequence_spec(config, plan).city.ego_route == EgoRoute::Free);
   }
   CHECK_THROWS_WITH(release_config_from_json({{"ego_routes", "loop"}}),
                     Catch::Contains("ego_routes must be mix or free"));

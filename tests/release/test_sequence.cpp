@@ -7,7 +7,14 @@
 using namespace flowscape;
 
 TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's poses then") {
-  const Sequence s = make_sequence({3, "fog", 77, 6, 4, 12, EgoRoute::Free, 10, {}});
+  const Sequence s = make_sequence({.city = {.map = 3,
+                                             .seed = 77,
+                                             .vehicles = 6,
+                                             .pedestrians = 4,
+                                             .ego_start = 12,
+                                             .ego_route = EgoRoute::Free},
+                                    .weather = "fog",
+                                    .frames = 10});
   for (int f : {0, 4, 9}) {
     const FramePair pair = s.frame_pair(f);
     CHECK(pair.time == Approx(f / 30.0));
@@ -22,16 +29,30 @@ TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's
 }
 
 TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json records") {
-  const Sequence a = make_sequence({0, "fog", 1, 2, 2, 0, EgoRoute::Free, 3, {}}),
-                 b = make_sequence({0, "fog", 2, 2, 2, 0, EgoRoute::Free, 3, {}});
+  const Sequence a = make_sequence({.city = {.map = 0,
+                                             .seed = 1,
+                                             .vehicles = 2,
+                                             .pedestrians = 2,
+                                             .ego_start = 0,
+                                             .ego_route = EgoRoute::Free},
+                                    .weather = "fog",
+                                    .frames = 3}),
+                 b = make_sequence({.city = {.map = 0,
+                                             .seed = 2,
+                                             .vehicles = 2,
+                                             .pedestrians = 2,
+                                             .ego_start = 0,
+                                             .ego_route = EgoRoute::Free},
+                                    .weather = "fog",
+                                    .frames = 3});
   CHECK(to_json(a.weather) == to_json(randomized(weather_preset("fog"), 1)));
   CHECK(to_json(a.weather) != to_json(b.weather));
   CHECK(a.city.scene.environment.fog.density > 0);
   const ReleaseConfig config = tiny_release_config(2);
   const SequencePlan plan = plan_sequences(config)[1];
   const SequenceSpec spec = sequence_spec(config, plan);
-  CHECK((spec.map == 0 && spec.weather == "rain" && spec.seed == plan.seed));
-  CHECK(spec.ego_start == int(plan.seed % 100));
+  CHECK((spec.city.map == 0 && spec.weather == "rain" && spec.city.seed == plan.seed));
+  CHECK(spec.city.ego_start == int(plan.seed % 100));
   const Sequence s = make_sequence(spec);
   const SequenceMeta meta = sequence_meta(s, plan, config);
   CHECK(meta.scene == "map00_seq01");

@@ -84,7 +84,7 @@ int lens_drops(const ReleaseConfig& config, const Sequence& sequence) {
 LensCover release_lens_cover(const ReleaseConfig& config, const Sequence& sequence,
                              const Projection& camera, int view) {
   return lens_cover(camera.width, camera.height, lens_drops(config, sequence), config.lens_dirt,
-                    derived_seed(sequence.spec.seed, std::uint64_t(view), 11));
+                    derived_seed(sequence.spec.city.seed, std::uint64_t(view), 11));
 }
 
 Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequence& sequence,

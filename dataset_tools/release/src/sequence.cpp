@@ -30,39 +30,38 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const SequencePlan& plan
 
 SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
                            const std::filesystem::path& source) {
-  SequenceSpec spec{s.map,
-                    s.weather,
-                    s.seed,
-                    s.vehicles,
-                    s.pedestrians,
-                    int(s.seed % 100),
-                    route_from_name(s.route),
-                    config.frames,
-                    config.models};
+  SequenceSpec spec;
+  CityConfig& city = spec.city;
+  city.map = s.map, city.seed = s.seed, city.vehicles = s.vehicles,
+  city.pedestrians = s.pedestrians;
+  city.ego_start = int(s.seed % 100), city.ego_route = route_from_name(s.route);
+  city.lane_change_at = s.lane_change_at;
+  city.models = config.models;
+  for (const auto& [kind, file] : s.models) city.models[kind] = file;  // over the release's
+  city.world = s.world_file, city.scripted = s.actors;
   set_actors(spec, config);
-  spec.time_of_day = s.time_of_day, spec.sky = s.sky;
+  spec.weather = s.weather, spec.time_of_day = s.time_of_day, spec.sky = s.sky;
   spec.weather_parameters = s.weather_parameters;
-  spec.world = s.world_file, spec.scripted = s.actors, spec.frame_rate = s.frame_rate;
-  spec.lane_change_at = s.lane_change_at;
-  for (const auto& [kind, file] : s.models) spec.models[kind] = file;  // over the release's
+  spec.frames = config.frames, spec.frame_rate = s.frame_rate;
   if (s.path) {
     try {
       spec.rig_path = rig_path_track(s, release_rig(config));
     } catch (const std::invalid_argument& e) {
       throw FileError(source, e.what());
     }
-    spec.draw_ego = false;  // a handheld camera or a drone: no car under it
+    spec.city.draw_ego = false;  // a handheld camera or a drone: no car under it
   }
   return spec;
 }
 
 void set_actors(SequenceSpec& spec, const ReleaseConfig& config) {
-  spec.actors = style_from_name(config.actors);
-  spec.asset_packs = config.asset_packs;
+  CityConfig& city = spec.city;
+  city.actors = style_from_name(config.actors);
+  city.asset_packs = config.asset_packs;
   const Rig rig = release_rig(config);
   // FlowScape's views float where CARLA mounted them, with no car drawn under them
-  spec.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.flowscape);
-  spec.ego_cameras = rig.optical_centres();
+  city.draw_ego = config.ego == "on" || (config.ego == "auto" && !rig.flowscape);
+  city.ego_cameras = rig.optical_centres();
 }
 
 FramePair Sequence::frame_pair(int frame) const {
@@ -87,7 +86,9 @@ TruthPlan truth_plan(const Sequence& sequence, const ReleaseLayout& layout, int 
   return plan;
 }
 
-std::uint64_t Sequence::color_seed(int frame) const { return derived_seed(spec.seed, frame, 1); }
+std::uint64_t Sequence::color_seed(int frame) const {
+  return derived_seed(spec.city.seed, frame, 1);
+}
 
 RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) const {
   RenderOptions options{config.spp, config.max_bounces, color_seed(frame)};
@@ -154,25 +155,17 @@ ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence
 }
 
 Sequence make_sequence(const SequenceSpec& spec) {
-  CityConfig city_config;
-  city_config.map = spec.map, city_config.seed = spec.seed;
-  city_config.vehicles = spec.vehicles, city_config.pedestrians = spec.pedestrians;
-  city_config.ego_start = spec.ego_start, city_config.ego_route = spec.ego_route;
-  city_config.lane_change_at = spec.lane_change_at;
-  city_config.duration = (spec.frames + 1) / spec.frame_rate;
-  city_config.world = spec.world, city_config.scripted = spec.scripted;
-  city_config.models = spec.models;
-  Weather weather = under_sky(at_time_of_day(randomized(weather_preset(spec.weather), spec.seed),
-                                             spec.time_of_day, spec.seed),
-                              spec.sky, spec.seed);
+  const std::uint64_t seed = spec.city.seed;
+  Weather weather = under_sky(
+      at_time_of_day(randomized(weather_preset(spec.weather), seed), spec.time_of_day, seed),
+      spec.sky, seed);
   if (!spec.weather_parameters.empty()) weather = with_parameters(weather, spec.weather_parameters);
-  city_config.actors = spec.actors;
+  CityConfig city_config = spec.city;
+  city_config.duration = (spec.frames + 1) / spec.frame_rate;
   city_config.wet = weather.precipitation > 0;
-  city_config.draw_ego = spec.draw_ego, city_config.ego_cameras = spec.ego_cameras;
-  city_config.asset_packs = spec.asset_packs;
   Sequence s{spec, make_city(city_config), weather};
   s.city.rig_path = spec.rig_path;
-  apply_weather(s.weather, spec.seed, s.city.rig_track(), s.city.scene);
+  apply_weather(s.weather, seed, s.city.rig_track(), s.city.scene);
   return s;
 }
 
@@ -224,10 +217,11 @@ void check_user_files(const ReleaseConfig& config) {
     if (plan.scenario_file.empty() && std::exchange(maps_checked, true)) continue;
     const SequenceSpec spec = sequence_spec(config, plan);
     Scene scratch;
-    if (spec.world) check(spec.world->path, [&] { load_world(*spec.world, scratch); });
+    if (spec.city.world)
+      check(spec.city.world->path, [&] { load_world(*spec.city.world, scratch); });
     std::vector<std::string> models;
-    for (const auto& [kind, file] : spec.models) models.push_back(file);
-    for (const ScriptedActor& actor : spec.scripted) models.push_back(actor.model);
+    for (const auto& [kind, file] : spec.city.models) models.push_back(file);
+    for (const ScriptedActor& actor : spec.city.scripted) models.push_back(actor.model);
     for (const std::string& file : models)
       check(file, [&] { load_model(file, SemanticClass::Vehicles, 4, scratch); });
   }

@@ -15,27 +15,17 @@
 namespace flowscape {
 
 struct SequenceSpec {
-  int map = 0;
-  std::string weather = "sunny";  // a preset name
-  std::uint64_t seed = 0;         // the city, traffic, weather variant and colour noise
-  int vehicles = 120, pedestrians = 80;
-  int ego_start = 0;  // index into City::start_points
-  EgoRoute ego_route = EgoRoute::Drive;
+  // The map or world, its traffic, actors and ego (scenes/city.h); city.seed is the sequence's
+  // seed: the city, traffic, weather variant and colour noise. Its duration follows from the
+  // frames, its wetness from the weather (make_sequence).
+  CityConfig city{.vehicles = 120, .pedestrians = 80, .ego_route = EgoRoute::Drive};
+  std::string weather = "sunny";                                 // a preset name
+  std::string time_of_day = "day";                               // weather.h's at_time_of_day
+  std::string sky = "physical";                                  // weather.h's under_sky
+  nlohmann::json weather_parameters = nlohmann::json::object();  // set over it (scenario.h)
   int frames = 100;
-  std::map<std::string, std::string> models;  // ReleaseConfig::models
-  ActorStyle actors = ActorStyle::Detailed;
-  bool draw_ego = true;
-  std::vector<Vec3> ego_cameras{Vec3::Zero()};  // the rig's optical centres (rig frame)
-  std::vector<std::string> asset_packs{};
-  std::string time_of_day = "day";  // weather.h's at_time_of_day
-  std::string sky = "physical";     // weather.h's under_sky
+  double frame_rate = kFrameRate;  // frames per second
   PoseTrack rig_path{};  // the rig's own path (a scenario's waypoints or pose file), or empty
-  nlohmann::json weather_parameters =
-      nlohmann::json::object();           // set over the weather (scenario.h)
-  std::optional<WorldModel> world{};      // a user's world model (map kUserWorldMap), or none
-  std::vector<ScriptedActor> scripted{};  // actors placed one by one (scenario.h)
-  double frame_rate = kFrameRate;         // frames per second
-  double lane_change_at = 1.0;            // seconds (EgoRoute::LaneChange)
 };
 // The spec of a planned sequence of a release: its scenario's (scenario.h's scenario_of: its ego
 // start follows from its seed, its route from the plan's `turns` or the scenario file).
