@@ -6,15 +6,25 @@
 
 using namespace flowscape;
 
+namespace {
+
+// A foggy sequence of map `map` whose ego drives free from start point `ego_start`.
+Sequence foggy_sequence(int map, std::uint64_t seed, int vehicles, int pedestrians, int ego_start,
+                        int frames) {
+  return make_sequence({.city = {.map = map,
+                                 .seed = seed,
+                                 .vehicles = vehicles,
+                                 .pedestrians = pedestrians,
+                                 .ego_start = ego_start,
+                                 .ego_route = EgoRoute::Free},
+                        .weather = "fog",
+                        .frames = frames});
+}
+
+}  // namespace
+
 TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's poses then") {
-  const Sequence s = make_sequence({.city = {.map = 3,
-                                             .seed = 77,
-                                             .vehicles = 6,
-                                             .pedestrians = 4,
-                                             .ego_start = 12,
-                                             .ego_route = EgoRoute::Free},
-                                    .weather = "fog",
-                                    .frames = 10});
+  const Sequence s = foggy_sequence(3, 77, 6, 4, 12, 10);
   for (int f : {0, 4, 9}) {
     const FramePair pair = s.frame_pair(f);
     CHECK(pair.time == Approx(f / 30.0));
@@ -29,22 +39,7 @@ TEST_CASE("a sequence's frame pairs are one frame apart at 30 Hz, with the rig's
 }
 
 TEST_CASE("a sequence renders the preset varied by its seed, as its meta.json records") {
-  const Sequence a = make_sequence({.city = {.map = 0,
-                                             .seed = 1,
-                                             .vehicles = 2,
-                                             .pedestrians = 2,
-                                             .ego_start = 0,
-                                             .ego_route = EgoRoute::Free},
-                                    .weather = "fog",
-                                    .frames = 3}),
-                 b = make_sequence({.city = {.map = 0,
-                                             .seed = 2,
-                                             .vehicles = 2,
-                                             .pedestrians = 2,
-                                             .ego_start = 0,
-                                             .ego_route = EgoRoute::Free},
-                                    .weather = "fog",
-                                    .frames = 3});
+  const Sequence a = foggy_sequence(0, 1, 2, 2, 0, 3), b = foggy_sequence(0, 2, 2, 2, 0, 3);
   CHECK(to_json(a.weather) == to_json(randomized(weather_preset("fog"), 1)));
   CHECK(to_json(a.weather) != to_json(b.weather));
   CHECK(a.city.scene.environment.fog.density > 0);
