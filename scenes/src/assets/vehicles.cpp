@@ -4,28 +4,39 @@
 
 namespace flowscape::assets {
 
-std::string family_name(Family family) {
-  static const char* const kNames[kFamilies] = {"hatchback", "saloon",    "estate",   "suv",
-                                                "pickup",    "van",       "city_bus", "box_truck",
-                                                "lorry",     "motorbike", "bicycle"};
-  return kNames[int(family)];
+namespace {
+
+VehicleModel heavy(Family family, int variant, bool) { return heavy_family(family, variant); }
+VehicleModel two_wheeler(Family family, int variant, bool) {
+  return two_wheeler_family(family, variant);
 }
 
-SemanticClass family_class(Family family) {
-  switch (family) {
-    case Family::CityBus:
-      return SemanticClass::Bus;
-    case Family::BoxTruck:
-    case Family::Lorry:
-      return SemanticClass::Truck;
-    case Family::Motorbike:
-      return SemanticClass::Motorcycle;
-    case Family::Bicycle:
-      return SemanticClass::Bicycle;
-    default:
-      return SemanticClass::Car;
-  }
-}
+// Every family: its name, its fine class, and the builder of its file (cars.cpp,
+// heavy_vehicles.cpp, two_wheelers.cpp), in Family's order.
+struct FamilyRow {
+  const char* name;
+  SemanticClass cls;
+  VehicleModel (*build)(Family family, int variant, bool mirrors);
+};
+constexpr FamilyRow kFamilyTable[kFamilies] = {
+    {"hatchback", SemanticClass::Car, car_family},
+    {"saloon", SemanticClass::Car, car_family},
+    {"estate", SemanticClass::Car, car_family},
+    {"suv", SemanticClass::Car, car_family},
+    {"pickup", SemanticClass::Car, car_family},
+    {"van", SemanticClass::Car, car_family},
+    {"city_bus", SemanticClass::Bus, heavy},
+    {"box_truck", SemanticClass::Truck, heavy},
+    {"lorry", SemanticClass::Truck, heavy},
+    {"motorbike", SemanticClass::Motorcycle, two_wheeler},
+    {"bicycle", SemanticClass::Bicycle, two_wheeler},
+};
+
+}  // namespace
+
+std::string family_name(Family family) { return kFamilyTable[int(family)].name; }
+
+SemanticClass family_class(Family family) { return kFamilyTable[int(family)].cls; }
 
 Mesh labelled(Mesh mesh, SemanticClass cls) {
   std::fill(mesh.classes.begin(), mesh.classes.end(), cls);
@@ -64,26 +75,8 @@ VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width
   return model;
 }
 
-namespace {
-
-VehicleModel family_model(Family family, int variant, bool mirrors) {
-  switch (family) {
-    case Family::CityBus:
-    case Family::BoxTruck:
-    case Family::Lorry:
-      return heavy_family(family, variant);
-    case Family::Motorbike:
-    case Family::Bicycle:
-      return two_wheeler_family(family, variant);
-    default:
-      return car_family(family, variant, mirrors);
-  }
-}
-
-}  // namespace
-
 VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
-  VehicleModel model = family_model(family, variant, mirrors);
+  VehicleModel model = kFamilyTable[int(family)].build(family, variant, mirrors);
   auto [body, windows] = split_by_slot(*model.body, kGlass);
   model.body = std::make_shared<const Mesh>(std::move(body));
   if (!windows.triangles.empty()) model.windows = std::make_shared<const Mesh>(std::move(windows));

@@ -11,6 +11,8 @@
 
 namespace flowscape::assets {
 
+// A new family: its entry here, its row in vehicles.cpp's kFamilyTable (name, class, builder),
+// its builder, and its share of the traffic (city_models.cpp).
 enum class Family : std::uint8_t {
   Hatchback,
   Saloon,
