@@ -89,11 +89,7 @@ void add_release_options(CLI::App& app, nlohmann::json& given) {
         added = app.add_option_function<std::vector<std::string>>(
             option.flag,
             usage_checked<std::vector<std::string>>([&given, &option](const auto& values) {
-              nlohmann::json all =
-                  option.parse ? nlohmann::json::object() : nlohmann::json::array();
-              for (const std::string& value : values)
-                option.parse ? all.update(option.parse(value)) : all.push_back(value);
-              given[option.key] = all;
+              given[option.key] = parse_each(option, values);
             }),
             option.help);
         break;

@@ -31,8 +31,7 @@ double FogMedium::optical_depth(const Vec3& o, const Vec3& d, double t) const {
 //   sun: albedo E / (4 pi) * integral_0^U exp(-u) exp(-(a - b u) H / s_z) du
 //      = albedo E / (4 pi) exp(-a H / s_z) (1 - exp(-c U)) / c,  c = 1 - d_z / s_z,
 //   sky: albedo L_mean * integral_0^U exp(-u) du = albedo L_mean (1 - exp(-U)).
-Rgb FogMedium::inscattered(const Vec3& o, const Vec3& d, double t) const {
-  const double depth = optical_depth(o, d, t);
+Rgb FogMedium::inscattered(const Vec3& o, const Vec3& d, double depth) const {
   const double scattered = std::isinf(depth) ? 1 : -std::expm1(-depth);
   Rgb light = sky_mean_ * scattered;
   const double sun_z = sun_direction_.z();

@@ -22,8 +22,8 @@ class FogMedium {
   double transmittance(const Vec3& o, const Vec3& d, double t) const {
     return present() ? std::exp(-optical_depth(o, d, t)) : 1;
   }
-  // Light it scatters towards o along that segment.
-  Rgb inscattered(const Vec3& o, const Vec3& d, double t) const;
+  // Light it scatters towards o along that segment, whose optical depth is `depth`.
+  Rgb inscattered(const Vec3& o, const Vec3& d, double depth) const;
 
  private:
   double extinction(double z) const;

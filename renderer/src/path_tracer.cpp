@@ -40,9 +40,10 @@ struct FrameContext {
 // light it lets through.
 void cross_fog(const FogMedium& fog, double distance, PathState& path) {
   if (!fog.present()) return;
+  const double depth = fog.optical_depth(path.origin, path.dir, distance);
   path.light[path.layer] +=
-      path.throughput.cwiseProduct(fog.inscattered(path.origin, path.dir, distance));
-  path.throughput *= std::exp(-fog.optical_depth(path.origin, path.dir, distance));
+      path.throughput.cwiseProduct(fog.inscattered(path.origin, path.dir, depth));
+  path.throughput *= std::exp(-depth);
 }
 
 // One bounce of a path at `hit`: the fog before it, the sky and sun disc where it finds nothing,

@@ -387,7 +387,6 @@ ReleaseLayout layout_from_json(const nlohmann::json& json) {
   layout.cube = json.value("cube_faces", true);
   for (const nlohmann::json& c : json.value("cameras", nlohmann::json::array()))
     layout.cameras.push_back({c.at("name").get<std::string>(), c.value("panorama", false)});
-  layout.flowscape_views = layout.cameras.empty();  // the file lists a rig's cameras, else none
   for (const nlohmann::json& row : json.at("kinds")) {
     const std::string name = row.is_object() ? row.value("name", "") : "";
     const std::optional<ReleaseKind> kind = release_kind(name);

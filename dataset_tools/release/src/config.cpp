@@ -122,8 +122,7 @@ ReleaseLayout release_layout(const ReleaseConfig& c) {
   ReleaseLayout layout =
       ReleaseLayout::of(c.outputs, c.flow_gaps, c.cube, flow_format_from_name(c.flow_format));
   const Rig rig = release_rig(c);
-  layout.flowscape_views = rig.flowscape;
-  if (!rig.flowscape)
+  if (!rig.flowscape)  // its views are the ERP's and the faces' (ReleaseLayout::of)
     for (const RigCamera& camera : rig.cameras)
       layout.cameras.push_back({camera.name, camera.projection.wraps_around()});
   return layout;

@@ -1,6 +1,8 @@
 #include "flowscape/release/options.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,19 +16,19 @@ using Section = OptionSection;
 using Form = OptionForm;
 using C = ReleaseConfig;
 
-// The whole number `text` is, all of it; nullopt for anything else (empty text too).
-std::optional<int> whole_number(const std::string& text) {
-  int value = 0;
+// The number (an int or a double) `text` is, all of it; nullopt for anything else (empty text too).
+template <class Number>
+std::optional<Number> number_of(const std::string& text) {
+  Number value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
   return value;
 }
 
-std::optional<double> real_number(const std::string& text) {
-  double value = 0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || text.empty()) return std::nullopt;
-  return value;
+template <class Number>
+nlohmann::json json_number(const std::string& text) {  // null where it is none
+  const std::optional<Number> number = number_of<Number>(text);
+  return number ? nlohmann::json(*number) : nlohmann::json();
 }
 
 std::vector<std::string> comma_list(const std::string& text) {
@@ -39,7 +41,7 @@ std::vector<std::string> comma_list(const std::string& text) {
 // --maps: a count N (maps 0..N-1), or the chosen map numbers separated by commas ("5," is one).
 nlohmann::json parse_maps(const std::string& text) {
   const auto count = [&](const std::string& item) {
-    const std::optional<int> value = whole_number(item);
+    const std::optional<int> value = number_of<int>(item);
     if (!value || *value < 0)
       throw std::invalid_argument("--maps: \"" + item + "\" is not a whole number >= 0");
     return *value;
@@ -67,6 +69,14 @@ std::string number_text(double value, bool integral) {
 bool integral(const OptionField& field) {
   return std::holds_alternative<int C::*>(field) ||
          std::holds_alternative<std::uint64_t C::*>(field);
+}
+
+// "1..65536 (0: as the denoiser wants)": a number option's range, empty for one without.
+std::string range_text(const ReleaseOption& option) {
+  if (!std::isfinite(option.min)) return "";
+  return number_text(option.min, integral(option.field)) + ".." +
+         number_text(option.max, integral(option.field)) +
+         (*option.special ? " (" + std::string(option.special) + ")" : "");
 }
 
 // "a, b or c"
@@ -449,9 +459,7 @@ void check_option(const ReleaseOption& option, const ReleaseConfig& config) {
   };
   if (value.is_number() &&
       !(value.get<double>() >= option.min && value.get<double>() <= option.max))
-    refuse("in " + number_text(option.min, integral(option.field)) + ".." +
-           number_text(option.max, integral(option.field)) +
-           (*option.special ? " (" + std::string(option.special) + ")" : ""));
+    refuse("in " + range_text(option));
   if (!option.choices.empty() && std::none_of(option.choices.begin(), option.choices.end(),
                                               [&](const char* choice) { return value == choice; }))
     refuse(alternatives(option.choices));
@@ -469,26 +477,28 @@ nlohmann::json with_absent_keys(nlohmann::json recorded) {
 
 nlohmann::json parse_list(const ReleaseOption& option, const std::string& text) {
   if (text == "none") return nlohmann::json::array();
-  const std::vector<std::string> items = comma_list(text);
+  // an item as the list's member holds it: null where it is not a number the list wants
+  const auto item_value = [&](const std::string& item) -> nlohmann::json {
+    if (std::holds_alternative<std::vector<int> C::*>(option.field)) return json_number<int>(item);
+    if (std::holds_alternative<std::vector<double> C::*>(option.field))
+      return json_number<double>(item);
+    return item;
+  };
   nlohmann::json list = nlohmann::json::array();
-  const bool numbers = std::holds_alternative<std::vector<double> C::*>(option.field);
-  const bool integers = std::holds_alternative<std::vector<int> C::*>(option.field);
-  for (const std::string& item : items) {
-    const std::optional<double> number =
-        integers ? std::optional<double>(whole_number(item)) : real_number(item);
-    if ((numbers || integers) && !number) {
-      list = nullptr;
-      break;
-    }
-    if (numbers || integers)
-      list.push_back(integers ? nlohmann::json(int(*number)) : nlohmann::json(*number));
-    else
-      list.push_back(item);
-  }
-  if (list.is_null() || (option.list_size > 0 && list.size() != option.list_size))
+  for (const std::string& item : comma_list(text)) list.push_back(item_value(item));
+  const bool numbers_read =
+      std::none_of(list.begin(), list.end(), [](const nlohmann::json& v) { return v.is_null(); });
+  if (!numbers_read || (option.list_size > 0 && list.size() != option.list_size))
     throw std::invalid_argument(std::string(option.flag) + " wants " + option.list_wants +
                                 " (got \"" + text + "\")");
   return list;
+}
+
+nlohmann::json parse_each(const ReleaseOption& option, const std::vector<std::string>& values) {
+  if (!option.parse) return values;
+  nlohmann::json all = nlohmann::json::object();
+  for (const std::string& value : values) all.update(option.parse(value));
+  return all;
 }
 
 std::string options_markdown() {
@@ -508,12 +518,8 @@ std::string options_markdown() {
             "| --- | --- | --- | --- | --- |\n";
     for (const ReleaseOption& option : release_options()) {
       if (int(option.section) != s) continue;
-      std::string values;
-      if (std::isfinite(option.min))
-        values = number_text(option.min, integral(option.field)) + ".." +
-                 number_text(option.max, integral(option.field));
-      if (*option.special) values += " (" + std::string(option.special) + ")";
-      if (!option.choices.empty()) values = alternatives(option.choices);
+      const std::string values =
+          option.choices.empty() ? range_text(option) : alternatives(option.choices);
       const std::string flag = *option.flag ? "`" + std::string(option.flag) + "`" : "";
       text += "| `" + std::string(option.key) + "` | " + flag + " | `" +
               option_value(option, defaults).dump() + "` | " + values + " | " + option.help +

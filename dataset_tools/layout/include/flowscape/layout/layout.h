@@ -167,13 +167,12 @@ struct LayoutCamera {
 struct ReleaseLayout {
   std::vector<ReleaseKind> kinds;
   bool cube = true;
-  // The flowscape rig's views (erp/ and, with `cube`, cube/<face>/); false: another rig's
-  // `cameras`, each in cameras/<name>/.
-  bool flowscape_views = true;
+  // Another rig's cameras, each in cameras/<name>/; none: the flowscape rig's views (erp/ and,
+  // with `cube`, cube/<face>/).
   std::vector<LayoutCamera> cameras;
   FlowFormat flow_format = FlowFormat::Flo;  // every flow kind's (ReleaseKind::flow_format)
 
-  bool has_erp() const { return flowscape_views; }
+  bool has_erp() const { return cameras.empty(); }
   std::vector<View> views() const;  // the ERP, the faces, or the cameras
 
   // `picked`: rows that are not `always` (or "all"); `gaps` must hold 1, each at least 1.

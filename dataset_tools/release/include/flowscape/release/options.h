@@ -76,6 +76,9 @@ void check_option(const ReleaseOption& option, const ReleaseConfig& config);
 nlohmann::json with_absent_keys(nlohmann::json recorded);
 // A list option's command-line text as config.json holds it; throws std::invalid_argument.
 nlohmann::json parse_list(const ReleaseOption& option, const std::string& text);
+// A repeated option's values (OptionForm::Each) as config.json holds them: each through `parse`
+// into one object, or a list of the texts; throws std::invalid_argument.
+nlohmann::json parse_each(const ReleaseOption& option, const std::vector<std::string>& values);
 
 // docs/options.md: a table of every option per section.
 std::string options_markdown();
