@@ -82,8 +82,8 @@ std::vector<Image<std::uint8_t>> render_plan(const Options& o, int map) {
   const FramePair frames = plan_view(sequence.city, frame / kFrameRate);
   const Projection camera = Projection::pinhole(o.height, o.height, 40);
   const GroundTruth gt = renderer.ground_truth(camera, frames);
-  const Image<float> color =
-      release_color(o.color, sequence, renderer, camera, TruthRequest{frames}, frame, gt);
+  const Image<float> color = release_color(color_section(o.color), sequence, renderer, camera,
+                                           TruthRequest{frames}, frame, gt);
   return {linear_to_srgb8(color.view()), semantic_to_color(gt.semantic.view())};
 }
 
@@ -123,7 +123,8 @@ std::vector<Image<std::uint8_t>> erp_row(const Options& o, const ReleaseConfig& 
       last ? FramePair{now.time, before.time, now.rig, before.rig} : sequence.frame_pair(frame);
   const Projection erp = Projection::equirectangular(o.height);
   const GroundTruth gt = renderer.ground_truth(erp, frames);
-  const Image<float> color = release_color(config, sequence, renderer, erp, frame, gt);
+  const Image<float> color =
+      release_color(color_section(config), sequence, renderer, erp, frame, gt);
   if (!o.gltf_dir.empty()) {
     std::filesystem::create_directories(o.gltf_dir);
     const std::filesystem::path base = std::filesystem::path(o.gltf_dir) / name;
@@ -213,8 +214,8 @@ std::vector<std::vector<Image<std::uint8_t>>> render_rig(const Options& o, int m
     rig_request.track = [&sequence](double t) { return sequence.city.rig(t); };
     const TruthRequest request = at_camera(rig_request, camera);
     const GroundTruth gt = renderer.ground_truth(camera.projection, request);
-    const Image<float> color =
-        release_color(config, sequence, renderer, camera.projection, request, frame, gt);
+    const Image<float> color = release_color(color_section(config), sequence, renderer,
+                                             camera.projection, request, frame, gt);
     rows.push_back({linear_to_srgb8(color.view()),
                     flow_to_color(gt.flow.view(), gt.valid.view(), {}),
                     semantic_to_color(gt.semantic.view())});

@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   for (const char* weather : {"sunny", "cloud", "fog", "rain"}) {
     spec.weather = weather;
     Setup s(spec, frame, height, reference_spp);
-    const RenderOptions release = s.sequence.color_options(defaults, frame);
+    const RenderOptions release = s.sequence.color_options(color_section(defaults), frame);
     const auto options = [&](int spp) {
       RenderOptions o = release;
       o.samples_per_pixel = spp, o.indirect_samples = spp / 2;

@@ -101,8 +101,8 @@ int main(int argc, char** argv) {
         psnr(s.reference_before_averaged_sky(frame, reference_spp), s.reference, s.truth));
     for (std::size_t k = 0; k < variants.size(); ++k) {
       const auto start = std::chrono::steady_clock::now();
-      const Image<float> color =
-          release_color(variants[k].config, s.sequence, s.renderer, s.erp, frame, s.truth);
+      const Image<float> color = release_color(color_section(variants[k].config), s.sequence,
+                                               s.renderer, s.erp, frame, s.truth);
       seconds[variants[k].name] += seconds_since(start) / 4;
       table[k].push_back(psnr(color, s.reference, s.truth));
     }
@@ -121,7 +121,8 @@ int main(int argc, char** argv) {
   std::printf(
       "  release default (%d spp, %d indirect, %s): worst %.1f dB (target >= 40 dB), "
       "%.2fx the baseline's time (target <= 0.5x)\n",
-      defaults.spp, indirect_samples(defaults), release_denoiser(defaults)->description().c_str(),
+      defaults.spp, indirect_samples(color_section(defaults)),
+      release_denoiser(color_section(defaults))->description().c_str(),
       *std::min_element(d.begin(), d.end()), seconds["release default"] / baseline);
   // the release default per time of day (sunny): noise at the sequence's exposure and cost
   std::printf("\n  %-30s %12s %12s %9s %12s %10s %12s\n", "release default, sunny", "rel. MSE",
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
     Setup s(spec, frame, height, reference_spp);
     const auto start = std::chrono::steady_clock::now();
     const Image<float> color =
-        release_color(defaults, s.sequence, s.renderer, s.erp, frame, s.truth);
+        release_color(color_section(defaults), s.sequence, s.renderer, s.erp, frame, s.truth);
     const double took = seconds_since(start), mse = relative_mse(color, s.reference, s.truth, true);
     if (day_mse == 0) day_mse = mse, day_seconds = took;
     const double bias = relative_mse(s.reference_before_averaged_sky(frame, reference_spp),

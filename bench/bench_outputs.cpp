@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
       map_name(0).c_str(), frame, config.height, 2 * config.height, config.face_size, threads,
       repeats);
 
-  const RenderOptions options = sequence.color_options(config, frame);
+  const RenderOptions options = sequence.color_options(color_section(config), frame);
   const TruthRequest base{sequence.frame_pair(frame)};
   const double color = median_seconds(repeats, [&] {
     const CubeFrame cube = render_cube(renderer, config.face_size, base, &options);

@@ -84,10 +84,11 @@ int main(int argc, char** argv) {
         const fs::path dir = out / (plan.name + "_" + std::to_string(frame));
         fs::create_directories(dir);
         const TruthRequest request{sequence.frame_pair(frame)};
-        const RenderOptions options = sequence.color_options(config, frame);
+        const RenderOptions options = sequence.color_options(color_section(config), frame);
         const CubeFrame cube = render_cube(renderer, face_size, request, &options);
         write_faces(dir, "color",
-                    linear_to_srgb8(denoised_cube_color(config, cube.color, cube.truth).view()));
+                    linear_to_srgb8(
+                        denoised_cube_color(color_section(config), cube.color, cube.truth).view()));
         write_faces(dir, "instance", cube.truth.instance);
         write_faces(dir, "semantic", cube.truth.semantic);
         std::ofstream(dir / "actors.json") << nlohmann::json{

@@ -208,12 +208,13 @@ Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
 // first, untimed) as the middle third and 2 outer thirds.
 Rendered final_cube(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
                     bool clean_centre) {
-  const RenderOptions options = sequence.color_options(config, 0);
+  const RenderOptions options = sequence.color_options(color_section(config), 0);
   const CubeFrame clean = render_cube(renderer, config.face_size, sequence.frame_pair(0), &options);
   Rendered out;
   const auto start = std::chrono::steady_clock::now();
   out.colour.push_back(shutter_cube(
-                           renderer, config.face_size, frame_shutter(config, sequence, 0),
+                           renderer, config.face_size,
+                           frame_shutter(final_pass_section(config), sequence, 0),
                            [&](double t) { return sequence.city.rig(t); }, options, true,
                            clean_centre ? &clean : nullptr)
                            .color);
@@ -254,7 +255,7 @@ constexpr Lever kLevers[] = {
      [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
        return traced_as(renderer, {.full_sky_when_scattered = !with}, [&] {
          return faces_color(renderer, config.face_size, sequence.frame_pair(0),
-                            sequence.color_options(config, 0));
+                            sequence.color_options(color_section(config), 0));
        });
      }},
     {"ground truth's camera and visibility rays in packets",
@@ -375,7 +376,7 @@ int main(int argc, char** argv) {
                final_pass = final_measured.seconds_per_frame;
   const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
   std::printf("  default: %d spp (%d indirect), a-trous   %6.2f s/frame  full release %5.2f h\n",
-              config.spp, indirect_samples(config), release, hours(release));
+              config.spp, indirect_samples(color_section(config)), release, hours(release));
   std::printf("  baseline: 16 spp raw                     %6.2f s/frame  full release %5.2f h\n",
               baseline, hours(baseline));
   std::printf(

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     return rig(t) * Pose(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));
   };
   request.pair.next_rig = request.track(request.pair.next_time);
-  const RenderOptions options = sequence.color_options(config, 1);
+  const RenderOptions options = sequence.color_options(color_section(config), 1);
   std::printf(
       "bench_rolling_shutter: %d x %d pinhole looking left, %d spp, %d threads; city: %zu "
       "actors, %zu parts, %zu skinned vertices\n",

@@ -16,15 +16,15 @@ PRODUCTION = ["core", "stitcher", "scenes", "weather", "renderer", "dataset_tool
 # (what, pattern, the files allowed to hold it)
 RULES = [
     ("a camera's kind", r"Projection::Kind|Kind::(Equirectangular|Pinhole|Lens)\b",
-     {"renderer/src/projection.cpp", "renderer/include/flowscape/renderer/projection.h"}),
+     {"renderer/src/camera/projection.cpp", "renderer/include/flowscape/renderer/projection.h"}),
     ("a denoiser's name compared", r'(==|!=)\s*"(atrous|oidn)"|"(atrous|oidn)"\s*(==|!=)',
-     {"renderer/src/denoiser.cpp"}),
+     {"renderer/src/post/denoiser.cpp"}),
     ("a material's kind in the bounce loop", r"Material::Kind|\.kind\s*==", set()),
-    ("a rig tested for no cameras", r"rig\w*\.cameras\.empty\(\)", {"renderer/src/rig.cpp"}),
+    ("a rig tested for no cameras", r"rig\w*\.cameras\.empty\(\)", {"renderer/src/camera/rig.cpp"}),
     ("the benchmarks' baseline switches", r"\bsingle_rays\b|\bfull_sky_when_scattered\b",
-     {"renderer/src/renderer.cpp", "renderer/include/flowscape/renderer/renderer.h"}),
+     {"renderer/src/render/renderer.cpp", "renderer/include/flowscape/renderer/renderer.h"}),
 ]
-BOUNCE_LOOP = {"renderer/src/path_tracer.cpp"}
+BOUNCE_LOOP = {"renderer/src/render/path_tracer.cpp"}
 
 
 def code_of(line):

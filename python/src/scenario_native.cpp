@@ -35,8 +35,8 @@ py::array preview(const std::string& scenario_json, int frame, int height,
   Renderer renderer(sequence.city.scene);
   const Projection erp = Projection::equirectangular(height);
   const GroundTruth truth = renderer.ground_truth(erp, sequence.frame_pair(frame));
-  const Image<std::uint8_t> srgb =
-      linear_to_srgb8(release_color(config, sequence, renderer, erp, frame, truth).view());
+  const Image<std::uint8_t> srgb = linear_to_srgb8(
+      release_color(color_section(config), sequence, renderer, erp, frame, truth).view());
   py::array_t<std::uint8_t> out({srgb.height, srgb.width, srgb.channels});
   std::copy(srgb.data.begin(), srgb.data.end(), out.mutable_data());
   return out;

@@ -218,7 +218,7 @@ def test_an_erp_wraps_round_and_the_result_equals_pytorch(tmp_path):
 
 def test_wide_images_go_in_tiles_inside_the_image_and_any_thread_count_gives_the_same_bytes(tmp_path):
     """600 columns: cores [0, 256), [256, 512), [512, 600), each from its 384-wide window inside
-    the image ([0, 384), [192, 576), [216, 600)), as renderer/src/unet.cpp documents."""
+    the image ([0, 384), [192, 576), [216, 600)), as renderer/src/post/unet.cpp documents."""
     write_tza(tmp_path / "w.tza", random_weights(seed=4), np.float32)
     w = read_tza(tmp_path / "w.tza")
     color, albedo, normal = scene(40, 600)

@@ -1,8 +1,8 @@
-// The path tracer's sampler (renderer/src/sampling.h, internal): Owen-scrambled Sobol pairs.
+// The path tracer's sampler (renderer/src/render/sampling.h, internal): Owen-scrambled Sobol pairs.
 #include <catch2/catch.hpp>
 #include <set>
 
-#include "sampling.h"
+#include "render/sampling.h"
 
 using namespace flowscape;
 

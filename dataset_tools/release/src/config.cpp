@@ -89,7 +89,16 @@ void validate(const ReleaseConfig& c) {
                                                                    std::to_string(c.shards) + ")");
 }
 
-int indirect_samples(const ReleaseConfig& c) {
+ColorSection color_section(const ReleaseConfig& c) {
+  return {c.spp, c.indirect_spp, c.max_bounces, c.adaptive, c.denoise, c.denoise_model};
+}
+
+FinalPassSection final_pass_section(const ReleaseConfig& c) {
+  return {c.shutter_angle,        c.sensor_noise, c.pixel_pitch,  c.lens_glare, c.vignetting,
+          c.chromatic_aberration, c.bayer,        c.jpeg_quality, c.lens_drops, c.lens_dirt};
+}
+
+int indirect_samples(const ColorSection& c) {
   if (c.indirect_spp > 0) return std::min(c.indirect_spp, c.spp);
   return make_denoiser(c.denoise, c.denoise_model)->filters()
              ? std::min(kDenoisedIndirectSpp, c.spp)

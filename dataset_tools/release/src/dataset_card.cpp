@@ -94,8 +94,8 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
     md << "- cube: six 90-degree faces (front right back left up down), " << c.face_size << " x "
        << c.face_size << ", focal " << c.face_size / 2.0
        << " px; the ERP colour is stitched from them\n";
-  md << "- colour path traced with " << c.spp << " samples per pixel (" << indirect_samples(c)
-     << " of them gathering indirect light"
+  md << "- colour path traced with " << c.spp << " samples per pixel ("
+     << indirect_samples(color_section(c)) << " of them gathering indirect light"
      << (sample_split(c.spp, c.adaptive).half > 0
              ? "; on average, adaptively: half everywhere, the other half on the " +
                    std::to_string(int(std::lround(100 * c.adaptive))) +

@@ -48,21 +48,22 @@ ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
 struct FinalFlowscape {
   Image<std::uint8_t> faces, erp;
 };
-FinalFlowscape final_flowscape(const ReleaseConfig& config, const Sequence& sequence,
-                               Renderer& renderer, const CubeToErp& map, const Exposure& exposure,
-                               int frame, const CubeFrame& clean) {
-  const Image<float> faces = final_cube_color(config, sequence, renderer, frame, clean);
+FinalFlowscape final_flowscape(const FramePipeline& p, const Exposure& exposure, int frame,
+                               const CubeFrame& clean) {
+  const int face_size = p.cube_to_erp->face_size;
+  const Image<float> faces =
+      final_cube_color(p.color, p.final_pass, face_size, p.sequence, p.renderer, frame, clean);
   FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
-  const Projection face_camera = Projection::cube_face(Face::Front, config.face_size);
+  const Projection face_camera = Projection::cube_face(Face::Front, face_size);
   int view = 1;
   for (Face face : kFaces) {
     const ImageView<const float> linear = face_view(faces.view(), face);
     const Image<std::uint8_t> developed =
-        develop(config, sequence, linear, face_camera, false, exposure, frame, view++);
+        develop(p.final_pass, p.sequence, linear, face_camera, false, exposure, frame, view++);
     std::copy(developed.data.begin(), developed.data.end(), face_view(out.faces.view(), face).data);
   }
-  const Image<float> erp = resample_bilinear(map.sampling, faces);
-  out.erp = develop(config, sequence, erp.view(), Projection::equirectangular(config.height), false,
+  const Image<float> erp = resample_bilinear(p.cube_to_erp->sampling, faces);
+  out.erp = develop(p.final_pass, p.sequence, erp.view(), p.rig.cameras.front().projection, false,
                     exposure, frame, 0);
   return out;
 }
@@ -97,20 +98,20 @@ struct CameraColor {
 CameraColor camera_color(const FramePipeline& p, const DirectCamera& camera, int frame,
                          const GroundTruth& truth, Exposure* exposure) {
   CameraColor out;
-  out.layers = release_layers(p.config, p.sequence, p.renderer, camera.projection, camera.request,
+  out.layers = release_layers(p.color, p.sequence, p.renderer, camera.projection, camera.request,
                               frame, truth);
-  const Image<float> color = denoised_color(p.config, out.layers, camera.projection,
+  const Image<float> color = denoised_color(p.color, out.layers, camera.projection,
                                             truth.depth.view(), truth.instance.view());
   out.clean = linear_to_srgb8(color.view());
   if (!exposure) return out;
   const ScopedPhase phase("final pass");
   if (camera.meters)
-    *exposure =
-        exposure_after(p.config, p.sequence, *exposure, out.clean.view(), camera.projection, frame);
+    *exposure = exposure_after(p.final_pass, p.sequence, *exposure, out.clean.view(),
+                               camera.projection, frame);
   const Image<float> linear =
-      final_color(p.config, p.sequence, p.renderer, camera.projection, camera.track, frame,
-                  camera.readout, out.layers, truth.depth);
-  out.final = develop(p.config, p.sequence, linear.view(), camera.projection, camera.real_lens,
+      final_color(p.color, p.final_pass, p.sequence, p.renderer, camera.projection, camera.track,
+                  frame, camera.readout, out.layers, truth.depth);
+  out.final = develop(p.final_pass, p.sequence, linear.view(), camera.projection, camera.real_lens,
                       *exposure, frame, camera.view);
   return out;
 }
@@ -124,11 +125,11 @@ GroundTruth timed_truth(Renderer& renderer, const Projection& camera, const Trut
 // face by face, the ERP colour resampled from theirs (the final pass's likewise).
 FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan, int frame,
                                    GroundTruth erp_truth, Exposure* exposure) {
-  const ReleaseConfig& config = p.config;
+  const int face_size = p.cube_to_erp->face_size;
   const Projection& erp = p.rig.cameras.front().projection;
-  CubeFrame cube = render_cube(p.renderer, config.face_size, plan.request, nullptr);
-  cube.color = release_cube_layers(config, p.sequence, p.renderer, cube.truth, frame);
-  const Image<float> faces_color = denoised_cube_color(config, cube.color, cube.truth);
+  CubeFrame cube = render_cube(p.renderer, face_size, plan.request, nullptr);
+  cube.color = release_cube_layers(p.color, face_size, p.sequence, p.renderer, cube.truth, frame);
+  const Image<float> faces_color = denoised_cube_color(p.color, cube.color, cube.truth);
   const Image<float> erp_color = [&] {
     const ScopedPhase phase("cube to ERP");
     return resample_bilinear(p.cube_to_erp->sampling, faces_color);
@@ -137,17 +138,16 @@ FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan
   FinalFlowscape final;
   if (exposure) {
     const ScopedPhase phase("final pass");
-    *exposure = exposure_after(config, p.sequence, *exposure, erp_clean.view(), erp, frame);
-    final = final_flowscape(config, p.sequence, p.renderer, *p.cube_to_erp, *exposure, frame, cube);
+    *exposure = exposure_after(p.final_pass, p.sequence, *exposure, erp_clean.view(), erp, frame);
+    final = final_flowscape(p, *exposure, frame, cube);
   }
   FrameImages images;
-  const Projection faces = Projection::pinhole(config.face_size, 6 * config.face_size, 90);
-  images.cube = view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps,
-                            class_table(config.classes),
-                            virtual_camera_images(p.layout, faces, plan, std::move(final.faces)));
+  const Projection faces = Projection::pinhole(face_size, 6 * face_size, 90);
+  images.cube =
+      view_images(std::move(cube.truth), linear_to_srgb8(faces_color.view()), plan.steps, p.classes,
+                  virtual_camera_images(p.layout, faces, plan, std::move(final.faces)));
   images.views.emplace_back(
-      View(), view_images(std::move(erp_truth), std::move(erp_clean), plan.steps,
-                          class_table(config.classes),
+      View(), view_images(std::move(erp_truth), std::move(erp_clean), plan.steps, p.classes,
                           virtual_camera_images(p.layout, erp, plan, std::move(final.erp))));
   return images;
 }
@@ -157,7 +157,7 @@ FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan
 // directly (exact, and cheap next to colour). With the final pass, `exposure` (the one after the
 // previous frame) becomes this frame's.
 FrameImages render_flowscape_frame(const FramePipeline& p, int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.config.frames);
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
   const Projection& erp = p.rig.cameras.front().projection;
   GroundTruth truth = timed_truth(p.renderer, erp, plan.request);
   if (p.cube_to_erp) return faces_and_stitched_erp(p, plan, frame, std::move(truth), exposure);
@@ -168,15 +168,14 @@ FrameImages render_flowscape_frame(const FramePipeline& p, int frame, Exposure* 
       truth, exposure);
   FrameImages images;
   images.views.emplace_back(
-      View(), view_images(std::move(truth), std::move(color.clean), plan.steps,
-                          class_table(p.config.classes),
+      View(), view_images(std::move(truth), std::move(color.clean), plan.steps, p.classes,
                           virtual_camera_images(p.layout, erp, plan, std::move(color.final))));
   return images;
 }
 
 // Another rig: every camera ray cast and path traced directly from its own optical centre.
 FrameImages render_rig_frame(const FramePipeline& p, int frame, Exposure* exposure) {
-  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.config.frames);
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
   FrameImages images;
   for (const RigCamera& camera : p.rig.cameras) try {
       const int view = int(&camera - p.rig.cameras.data());
@@ -189,10 +188,10 @@ FrameImages render_rig_frame(const FramePipeline& p, int frame, Exposure* exposu
       if (p.layout.has("time"))
         extras.time = capture_times(camera.projection, camera.readout, request.pair.time);
       if (p.layout.has("lens_mask"))
-        extras.lens_mask = release_lens_mask(p.config, p.sequence, camera.projection, view);
+        extras.lens_mask = release_lens_mask(p.final_pass, p.sequence, camera.projection, view);
       images.views.emplace_back(view_of(p.rig, camera),
                                 view_images(std::move(truth), std::move(color.clean), plan.steps,
-                                            class_table(p.config.classes), std::move(extras)));
+                                            p.classes, std::move(extras)));
     } catch (const RayError& e) {
       throw e.of_camera(camera.name);
     }

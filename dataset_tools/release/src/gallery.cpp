@@ -46,10 +46,10 @@ std::vector<std::vector<Image<std::uint8_t>>> actor_gallery(const GalleryOptions
       const GroundTruth gt = renderer.ground_truth(camera, pair);
       RenderOptions options;
       options.samples_per_pixel = o.color.spp, options.seed = 11;
-      options.indirect_samples = indirect_samples(o.color);
+      options.indirect_samples = indirect_samples(color_section(o.color));
       const ColorLayers layers = renderer.color_layers(camera, pair, options);
-      const Image<float> color =
-          release_denoiser(o.color)->view(layers, camera, gt.depth.view(), gt.instance.view());
+      const Image<float> color = release_denoiser(color_section(o.color))
+                                     ->view(layers, camera, gt.depth.view(), gt.instance.view());
       row.push_back(linear_to_srgb8(color.view()));
       label_tile(row.back(), name + " " + view);
       if (semantic.data.empty()) semantic = semantic_to_color(gt.semantic.view());

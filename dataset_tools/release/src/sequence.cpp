@@ -90,55 +90,57 @@ std::uint64_t Sequence::color_seed(int frame) const {
   return derived_seed(spec.city.seed, frame, 1);
 }
 
-RenderOptions Sequence::color_options(const ReleaseConfig& config, int frame) const {
-  RenderOptions options{config.spp, config.max_bounces, color_seed(frame)};
-  options.indirect_samples = indirect_samples(config);
+RenderOptions Sequence::color_options(const ColorSection& color_settings, int frame) const {
+  RenderOptions options{color_settings.spp, color_settings.max_bounces, color_seed(frame)};
+  options.indirect_samples = indirect_samples(color_settings);
   return options;
 }
 
-std::unique_ptr<const Denoiser> release_denoiser(const ReleaseConfig& config) {
-  return make_denoiser(config.denoise, config.denoise_model);
+std::unique_ptr<const Denoiser> release_denoiser(const ColorSection& color_settings) {
+  return make_denoiser(color_settings.denoise, color_settings.denoise_model);
 }
 
-Image<float> denoised_cube_color(const ReleaseConfig& config, const ColorLayers& color,
+Image<float> denoised_cube_color(const ColorSection& color_settings, const ColorLayers& color,
                                  const GroundTruth& truth) {
   const ScopedPhase phase("denoising");
-  return release_denoiser(config)->cube(color, truth);
+  return release_denoiser(color_settings)->cube(color, truth);
 }
 
-ColorLayers release_cube_layers(const ReleaseConfig& config, const Sequence& sequence,
-                                Renderer& renderer, const GroundTruth& truth, int frame) {
+ColorLayers release_cube_layers(const ColorSection& color_settings, int face_size,
+                                const Sequence& sequence, Renderer& renderer,
+                                const GroundTruth& truth, int frame) {
   return adaptive_color_layers(
       [&](const RenderOptions& options) {
-        return cube_color_layers(renderer, config.face_size, sequence.frame_pair(frame), options);
+        return cube_color_layers(renderer, face_size, sequence.frame_pair(frame), options);
       },
-      [&](const ColorLayers& color) { return denoised_cube_color(config, color, truth); },
-      sequence.color_options(config, frame), config.adaptive);
+      [&](const ColorLayers& color) { return denoised_cube_color(color_settings, color, truth); },
+      sequence.color_options(color_settings, frame), color_settings.adaptive);
 }
 
-Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
+Image<float> denoised_color(const ColorSection& color_settings, const ColorLayers& layers,
                             const Projection& camera, ImageView<const float> depth,
                             ImageView<const std::uint16_t> instance) {
   const ScopedPhase phase("denoising");
-  return release_denoiser(config)->view(layers, camera, depth, instance);
+  return release_denoiser(color_settings)->view(layers, camera, depth, instance);
 }
 
-Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+Image<float> release_color(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth) {
-  return release_color(config, sequence, renderer, camera, TruthRequest{sequence.frame_pair(frame)},
-                       frame, truth);
+  return release_color(color_settings, sequence, renderer, camera,
+                       TruthRequest{sequence.frame_pair(frame)}, frame, truth);
 }
 
-Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+Image<float> release_color(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
-  return denoised_color(config,
-                        release_layers(config, sequence, renderer, camera, view, frame, truth),
-                        camera, truth.depth.view(), truth.instance.view());
+  return denoised_color(
+      color_settings,
+      release_layers(color_settings, sequence, renderer, camera, view, frame, truth), camera,
+      truth.depth.view(), truth.instance.view());
 }
 
-ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence,
+ColorLayers release_layers(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
   return adaptive_color_layers(
@@ -149,9 +151,10 @@ ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence
                                                              view.readout, options);
       },
       [&](const ColorLayers& layers) {
-        return denoised_color(config, layers, camera, truth.depth.view(), truth.instance.view());
+        return denoised_color(color_settings, layers, camera, truth.depth.view(),
+                              truth.instance.view());
       },
-      sequence.color_options(config, frame), config.adaptive);
+      sequence.color_options(color_settings, frame), color_settings.adaptive);
 }
 
 Sequence make_sequence(const SequenceSpec& spec) {

@@ -205,7 +205,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
       if (final)
         exposures[std::size_t(f)] = exposure = exposure_after(
-            config, sequence, exposure,
+            final_pass_section(config), sequence, exposure,
             read_image<std::uint8_t>(dir / frame_file(output_kind("color"), view, f)).view(),
             metering, f);
       continue;
@@ -218,8 +218,10 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     Exposure* frame_exposure = final ? &exposure : nullptr;
     FrameImages images = [&] {
       try {
-        return render_frame({config, layout, rig, sequence, *renderer, faces ? &map : nullptr}, f,
-                            frame_exposure);
+        return render_frame(
+            {color_section(config), final_pass_section(config), class_table(config.classes),
+             config.frames, layout, rig, sequence, *renderer, faces ? &map : nullptr},
+            f, frame_exposure);
       } catch (const RayError& e) {  // the ERP's, or a face's or rig camera's already named
         throw std::runtime_error(plan.name + ", frame " + std::to_string(f) + ", " +
                                  e.of_camera("erp").what());
@@ -240,7 +242,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   meta.boxes = boxes_json(dir, layout, config.frames);
   meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps,
                                              class_table(config.classes).size());
-  if (final) meta.final = final_json(config, sequence, exposures);
+  if (final) meta.final = final_json(final_pass_section(config), sequence, exposures);
   write_meta(dir, meta);
 }
 

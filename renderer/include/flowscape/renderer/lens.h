@@ -1,9 +1,9 @@
 #pragma once
 // Camera models beyond the cube's pinholes, in the manner of pbrt's cameras: one small interface,
-// a model per file (renderer/src/lenses/). A lens maps continuous pixel positions (pixel centres at
-// +0.5) to unit rays in its camera frame (x right, y down, z forward; a panoramic annular lens
-// looks along its z, which its mount points up) and back. docs/cameras.md has every model's
-// equations, parameters and limits.
+// a model per file (renderer/src/camera/lenses/). A lens maps continuous pixel positions (pixel
+// centres at +0.5) to unit rays in its camera frame (x right, y down, z forward; a panoramic
+// annular lens looks along its z, which its mount points up) and back. docs/cameras.md has every
+// model's equations, parameters and limits.
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>

@@ -122,9 +122,32 @@ void validate(const ReleaseConfig& config);  // throws std::invalid_argument nam
 // Throws std::invalid_argument when a fetched sky map of the config is too small for its images
 // (the ERP's and the cube faces' pixels per radian; weather.h's check_sky_resolution).
 void check_sky_resolution(const ReleaseConfig& config);
+
+// The sections of a release the frame pipeline's stages take instead of the whole config (their
+// members as ReleaseConfig describes them).
+// How a view's colour is path traced and denoised.
+struct ColorSection {
+  int spp, indirect_spp, max_bounces;
+  double adaptive;
+  std::string denoise, denoise_model;
+};
+ColorSection color_section(const ReleaseConfig& config);
+// The final pass's shutter, sensor and lens (final_pass.h).
+struct FinalPassSection {
+  double shutter_angle;
+  bool sensor_noise;
+  double pixel_pitch, lens_glare;
+  bool vignetting;
+  double chromatic_aberration;
+  bool bayer;
+  int jpeg_quality, lens_drops;
+  double lens_dirt;
+};
+FinalPassSection final_pass_section(const ReleaseConfig& config);
+
 inline constexpr int kDenoisedIndirectSpp = 4;
 // How many of a pixel's samples gather indirect light (see ReleaseConfig::indirect_spp).
-int indirect_samples(const ReleaseConfig& config);
+int indirect_samples(const ColorSection& color);
 // The kinds and views a release made with `config` holds (its outputs, flow gaps, rig, faces).
 ReleaseLayout release_layout(const ReleaseConfig& config);
 // The release's rig (renderer/rig.h): for flowscape the ERP and, with `cube`, the six faces; a rig

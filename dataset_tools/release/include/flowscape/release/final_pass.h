@@ -15,47 +15,49 @@
 
 namespace flowscape {
 
-SensorModel release_sensor(const ReleaseConfig& config);
-// The shutter of a frame (ReleaseConfig::shutter_angle, centred on the frame's time).
-Shutter frame_shutter(const ReleaseConfig& config, const Sequence& sequence, int frame);
+SensorModel release_sensor(const FinalPassSection& final_pass);
+// The shutter of a frame (shutter_angle, centred on the frame's time).
+Shutter frame_shutter(const FinalPassSection& final_pass, const Sequence& sequence, int frame);
 
 // The auto-exposure after a frame, its key measured on the frame's clean colour as written (8-bit
 // sRGB, brought back to cd/m^2 through the sequence's exposure) where `camera` has an image (not
 // outside a fisheye's circle): the same bytes whether the sequence was rendered in one go or
 // resumed.
-Exposure exposure_after(const ReleaseConfig& config, const Sequence& sequence,
+Exposure exposure_after(const FinalPassSection& final_pass, const Sequence& sequence,
                         const Exposure& previous, ImageView<const std::uint8_t> clean,
                         const Projection& camera, int frame);
 
 // The drops and dirt on a real lens of a sequence's view (config lens_drops, lens_dirt; the
 // same for every frame).
-LensCover release_lens_cover(const ReleaseConfig& config, const Sequence& sequence,
+LensCover release_lens_cover(const FinalPassSection& final_pass, const Sequence& sequence,
                              const Projection& camera, int view);
 // Its lens_mask: cover_mask where the lens has an image, 0 elsewhere.
-Image<std::uint8_t> release_lens_mask(const ReleaseConfig& config, const Sequence& sequence,
+Image<std::uint8_t> release_lens_mask(const FinalPassSection& final_pass, const Sequence& sequence,
                                       const Projection& camera, int view);
 
 // One view's colour over the frame's shutter, denoised (linear, the clean pass's units); with a
 // rolling shutter each line's shutter is centred on its own time. The clean pass's layers of the
 // view (`clean`, release_layers) and its ground-truth depth stand for the shutter's middle third
 // (shutter.h): the outer thirds are traced with a quarter of the samples each.
-Image<float> final_color(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
-                         const Projection& camera, const CameraTrack& track, int frame,
-                         const Readout& readout, const ColorLayers& clean,
-                         const Image<float>& clean_depth);
+Image<float> final_color(const ColorSection& color_settings, const FinalPassSection& final_pass,
+                         const Sequence& sequence, Renderer& renderer, const Projection& camera,
+                         const CameraTrack& track, int frame, const Readout& readout,
+                         const ColorLayers& clean, const Image<float>& clean_depth);
 // The six cube faces' (stacked), for the flowscape rig, around the clean pass's cube (its colour
 // layers, release_cube_layers, and ground truth).
-Image<float> final_cube_color(const ReleaseConfig& config, const Sequence& sequence,
-                              Renderer& renderer, int frame, const CubeFrame& clean);
+Image<float> final_cube_color(const ColorSection& color_settings,
+                              const FinalPassSection& final_pass, int face_size,
+                              const Sequence& sequence, Renderer& renderer, int frame,
+                              const CubeFrame& clean);
 
 // A view's final colour through the camera, 8-bit sRGB: `lens` says whether it is a real lens
 // (vignetting) or a virtual camera (the ERP, a cube face); `view` seeds its noise apart.
-Image<std::uint8_t> develop(const ReleaseConfig& config, const Sequence& sequence,
+Image<std::uint8_t> develop(const FinalPassSection& final_pass, const Sequence& sequence,
                             ImageView<const float> color, const Projection& camera, bool lens,
                             const Exposure& exposure, int frame, int view);
 
 // meta.json's "final": the shutter, the sensor and each frame's exposure.
-nlohmann::json final_json(const ReleaseConfig& config, const Sequence& sequence,
+nlohmann::json final_json(const FinalPassSection& final_pass, const Sequence& sequence,
                           const std::vector<Exposure>& exposures);
 
 }  // namespace flowscape

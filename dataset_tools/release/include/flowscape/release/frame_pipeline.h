@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "flowscape/formats/image_io.h"
+#include "flowscape/layout/classes.h"
 #include "flowscape/layout/layout.h"
 #include "flowscape/release/config.h"
 #include "flowscape/release/final_pass.h"
@@ -29,7 +30,10 @@ struct FrameImages {
 
 // What every frame of a sequence shares.
 struct FramePipeline {
-  const ReleaseConfig& config;
+  ColorSection color;
+  FinalPassSection final_pass;
+  const ClassTable& classes;  // the release's semantic ids
+  int frames;                 // in the sequence
   const ReleaseLayout& layout;
   const Rig& rig;  // release_rig(config)
   const Sequence& sequence;

@@ -54,39 +54,40 @@ struct Sequence {
   std::uint64_t color_seed(int frame) const;  // the path tracer's seed for this frame
   // The path tracer's settings for this frame: config.spp samples, indirect_spp of them (at most
   // all) gathering indirect light, color_seed(frame).
-  RenderOptions color_options(const ReleaseConfig& config, int frame) const;
+  RenderOptions color_options(const ColorSection& color_settings, int frame) const;
 };
 // The city is built and the weather applied (sky, fog, wet materials, rain streaks, puddles).
 // A Renderer keeps a reference to sequence.city.scene: do not move the Sequence while one lives.
 Sequence make_sequence(const SequenceSpec& spec);
 
 // The denoiser the release's denoise and denoise_model name (renderer/denoiser.h).
-std::unique_ptr<const Denoiser> release_denoiser(const ReleaseConfig& config);
+std::unique_ptr<const Denoiser> release_denoiser(const ColorSection& color_settings);
 // A view's colour layers as the release's denoiser leaves them (the guides for a-trous).
-Image<float> denoised_color(const ReleaseConfig& config, const ColorLayers& layers,
+Image<float> denoised_color(const ColorSection& color_settings, const ColorLayers& layers,
                             const Projection& camera, ImageView<const float> depth,
                             ImageView<const std::uint16_t> instance);
 // The colour of a cube frame's faces (stacked layers, and the faces' ground truth for a-trous) as
 // the release's denoiser leaves them.
-Image<float> denoised_cube_color(const ReleaseConfig& config, const ColorLayers& color,
+Image<float> denoised_cube_color(const ColorSection& color_settings, const ColorLayers& color,
                                  const GroundTruth& truth);
 // The cube faces' colour layers of a frame as a release renders them (before denoised_cube_color):
 // path traced with color_options (and config.adaptive's adaptive sampling, which denoises with the
 // faces' ground truth `truth`).
-ColorLayers release_cube_layers(const ReleaseConfig& config, const Sequence& sequence,
-                                Renderer& renderer, const GroundTruth& truth, int frame);
+ColorLayers release_cube_layers(const ColorSection& color_settings, int face_size,
+                                const Sequence& sequence, Renderer& renderer,
+                                const GroundTruth& truth, int frame);
 // The colour of one camera's view of a frame as a release renders it without cube faces: path
 // traced with color_options (and config.adaptive's adaptive sampling) and denoised with the view's
 // ground truth (unless config.denoise is "none").
-Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+Image<float> release_color(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, int frame,
                            const GroundTruth& truth);
 // The same as `view` sees it (a rig camera's request: its viewpoint, its rolling shutter).
-Image<float> release_color(const ReleaseConfig& config, const Sequence& sequence,
+Image<float> release_color(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth);
 // Its colour layers, before denoised_color.
-ColorLayers release_layers(const ReleaseConfig& config, const Sequence& sequence,
+ColorLayers release_layers(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth);
 

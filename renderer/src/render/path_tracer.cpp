@@ -1,0 +1,312 @@
+// A unidirectional path tracer in the manner of Embree's tutorials, gathering its light in the
+// layers a denoiser needs (ColorLayers).
+#include "render/path_tracer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "render/bsdf.h"
+#include "render/light_sampler.h"
+#include "render/sampling.h"
+
+namespace flowscape {
+namespace {
+
+constexpr double kFar = std::numeric_limits<double>::infinity();
+
+bool russian_roulette(int bounce, double u, Rgb& throughput) {  // whether the path survives
+  if (bounce < 3) return true;
+  const double keep = std::clamp(throughput.maxCoeff(), 0.05, 0.95);
+  if (u >= keep) return false;
+  throughput /= keep;
+  return true;
+}
+
+// What every path of a frame shares.
+struct FrameContext {
+  const EmbreeScene& embree;
+  const ImageTextures& images;
+  const Lights& lights;
+  bool textures;
+};
+
+// The fog between the path's origin and `distance` along it: the light it scatters in, and the
+// light it lets through.
+void cross_fog(const FogMedium& fog, double distance, PathState& path) {
+  if (!fog.present()) return;
+  const double depth = fog.optical_depth(path.origin, path.dir, distance);
+  path.light[path.layer] +=
+      path.throughput.cwiseProduct(fog.inscattered(path.origin, path.dir, depth));
+  path.throughput *= std::exp(-depth);
+}
+
+// One bounce of a path at `hit`: the fog before it, the sky and sun disc where it finds nothing,
+// else what the surface's material does (bsdf.h). Directions follow the shading normal; a
+// direction sent below the geometric surface ends the path. Returns whether the path goes on.
+bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look, int bounce,
+             Sampler& sampler, PathState& path, ShadowRay& shadow) {
+  const Lights& lights = frame.lights;
+  const Vec2 light_sample = sampler.next(), lobe_sample = sampler.next(), choice = sampler.next();
+  cross_fog(lights.fog, hit.found ? hit.distance : kFar, path);
+  if (!hit.found) {
+    const Vec3& dir = path.dir;
+    path.light[path.layer] += path.throughput.cwiseProduct(
+        sky_seen(lights, dir, path.scattered) * found_sky_weight(lights, path, dir) +
+        (path.sun_visible ? lights.sun_radiance(dir) : Rgb::Zero()));
+    return false;
+  }
+  path.width += path.spread * hit.distance;
+  const Surface s = surface_at(frame.embree, hit, path.origin, path.dir, look);
+  const Bsdf& bsdf = bsdf_of(s.material->kind);
+  const SurfaceEvent event{
+      lights,      s,     1e-4 * (1 + s.position.norm()), path.layer == kOther, light_sample,
+      lobe_sample, choice};
+  if (event.first && !bsdf.see_through()) path.normal += s.smooth;
+  const Turn turn = bsdf.interact(event, path, shadow);
+  if (turn == Turn::Ends || turn == Turn::PassesThrough) return turn == Turn::PassesThrough;
+  if ((path.dir.dot(s.geometric) > 0) == (turn == Turn::Transmitted)) return false;
+  return russian_roulette(bounce, choice.y(), path.throughput);
+}
+
+// The textured looks of the camera hits of one pixel: one evaluation per triangle its samples hit,
+// where the pixel centre's ray meets that triangle's plane, filtered over the pixel's footprint
+// there (as a mip-mapped texture lookup is). The samples hitting that triangle share it, so a
+// texture costs one evaluation per pixel and surface rather than one per sample, and a textured
+// pixel does not flicker with its samples' jitter.
+class PixelLooks {
+ public:
+  PixelLooks(const FrameContext& frame, const Vec3& origin, const Vec3& centre, double spread)
+      : frame_(frame), origin_(origin), centre_(centre), spread_(spread) {}
+
+  const TexturedLook& at(const Hit& hit, const Vec3& sample_dir) {
+    for (int k = 0; k < count_; ++k)
+      if (entries_[k].mesh == hit.mesh && entries_[k].triangle == hit.triangle)
+        return entries_[k].look;
+    const int slot = count_ < kSlots ? count_++ : kSlots - 1;  // the last slot is reused
+    entries_[slot] = {hit.mesh, hit.triangle, look_at_centre(hit, sample_dir)};
+    return entries_[slot].look;
+  }
+
+ private:
+  TexturedLook look_at_centre(const Hit& hit, const Vec3& sample_dir) const {
+    const EmbreeScene& embree = frame_.embree;
+    const Pose& pose = embree.pose_now(hit.mesh);
+    const Vec3 normal = pose.linear() * hit.normal.cast<double>();
+    const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
+    const Vec3 corner = pose * mesh.vertices[mesh.triangles[hit.triangle][0]].cast<double>();
+    const double facing = normal.dot(centre_), t = normal.dot(corner - origin_) / facing;
+    if (t > 0 && std::isfinite(t) && t < 4 * hit.distance + 1)
+      return textured_look(embree, frame_.images, hit, origin_ + t * centre_, centre_, spread_ * t);
+    return textured_look(embree, frame_.images, hit, origin_ + hit.distance * sample_dir,
+                         sample_dir, spread_ * hit.distance);
+  }
+
+  static constexpr int kSlots = 8;
+  struct Entry {
+    unsigned mesh, triangle;
+    TexturedLook look;
+  };
+  const FrameContext& frame_;
+  Vec3 origin_, centre_;
+  double spread_;
+  Entry entries_[kSlots];
+  int count_ = 0;
+};
+
+// Traces up to kBundleSize paths in lock step, one Embree packet per bounce and one for the shadow
+// rays: the samples of one pixel (or of a few neighbours) stay coherent for the camera rays and
+// the first shadow rays. camera_looks: each path's pixel's.
+void trace_bundle(const FrameContext& frame, PixelLooks* const* camera_looks, PathState* paths,
+                  Sampler* samplers, int count, int max_bounces, std::uint64_t& rays) {
+  const EmbreeScene& embree = frame.embree;
+  BundleRay bundle[kBundleSize];
+  Hit hits[kBundleSize];
+  ShadowRay shadows[kBundleSize];
+  bool blocked[kBundleSize];
+  // a sample outside a lens's image has no ray (zero) and no light
+  for (int i = 0; i < count; ++i)
+    bundle[i] = {paths[i].origin, paths[i].dir, !paths[i].dir.isZero()};
+  for (int bounce = 0; bounce <= max_bounces; ++bounce) {
+    const int alive = int(std::count_if(bundle, bundle + count, [](auto& r) { return r.active; }));
+    if (alive == 0) break;
+    embree.intersect(bundle, count, hits);
+    rays += alive;
+    for (int i = 0; i < count; ++i) {
+      shadows[i] = {};
+      if (!bundle[i].active) continue;
+      const TexturedLook* look = nullptr;
+      TexturedLook own;  // a specular chain's hit: its own point
+      if (frame.textures && hits[i].found && !paths[i].scattered && is_textured(embree, hits[i])) {
+        if (bounce == 0) {
+          look = &camera_looks[i]->at(hits[i], paths[i].dir);
+        } else {
+          own = textured_look(embree, frame.images, hits[i],
+                              paths[i].origin + hits[i].distance * paths[i].dir, paths[i].dir,
+                              paths[i].width + paths[i].spread * hits[i].distance);
+          look = &own;
+        }
+      }
+      bundle[i].active = advance(frame, hits[i], look, bounce, samplers[i], paths[i], shadows[i]);
+      bundle[i].origin = paths[i].origin, bundle[i].direction = paths[i].dir;
+    }
+    BundleRay shadow_rays[kBundleSize];
+    for (int i = 0; i < count; ++i) shadow_rays[i] = shadows[i].ray, rays += shadows[i].ray.active;
+    embree.occluded(shadow_rays, count, blocked);
+    for (int i = 0; i < count; ++i)
+      if (shadows[i].ray.active && !blocked[i])
+        paths[i].light[shadows[i].layer] += shadows[i].light;
+  }
+}
+
+void put(Image<float>& image, int x, int y, const Rgb& value) {
+  for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = float(value[c]);
+}
+
+// One pixel's samples: their keys, camera rays and textured looks, and what they gathered.
+struct PixelSamples {
+  PixelSamples(const FrameContext& frame, const Projection& projection, const Pose& camera,
+               std::uint64_t seed, int x, int y)
+      : keys(mix_bits(seed ^ mix_bits((std::uint64_t(y) << 32) | unsigned(x)))),
+        camera_rays(projection, x, y),
+        spread(projection.pixel_spread(Vec2(x + 0.5, y + 0.5))),
+        looks(frame, camera.translation(), (camera.linear() * camera_rays({0.5, 0.5})).normalized(),
+              spread) {}
+
+  void add(const PathState& path) {
+    for (int l = 0; l < kLayerCount; ++l) sums[l] += path.light[l];
+    for (int l = kDirect; l <= kSpecular; ++l)
+      squares[l - kDirect] += std::pow(luminance(path.light[l]), 2);
+    albedo += path.albedo, normal += path.normal;
+  }
+  // The means of `samples` into the layers at (x, y), with the variance of each noisy layer's mean.
+  void put_means(int samples, ColorLayers& out, int x, int y) const {
+    Image<float>* layers[kLayerCount] = {&out.other, &out.direct, &out.indirect, &out.specular};
+    const double weight = 1.0 / std::max(1, samples);
+    for (int l = 0; l < kLayerCount; ++l) put(*layers[l], x, y, sums[l] * weight);
+    put(out.albedo, x, y, albedo * weight);
+    put(out.normal, x, y, normal);
+    Rgb variance;
+    for (int l = kDirect; l <= kSpecular; ++l) {
+      const double mean = luminance(sums[l]) * weight;
+      variance[l - kDirect] = std::max(0.0, squares[l - kDirect] * weight - mean * mean) * weight;
+    }
+    put(out.variance, x, y, variance);
+  }
+
+  Sampler::PixelKeys keys;
+  PixelRays camera_rays;
+  double spread;
+  PixelLooks looks;
+  Rgb sums[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
+  Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
+  Rgb albedo = Rgb::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
+// Traces neighbouring pixels of a row together: as many as fill a bundle with all their samples
+// (two at 8 spp), so their camera and first light rays share Embree packets. Each pixel's samples
+// and their order are its own, so a pixel's colour does not depend on its neighbours.
+struct PixelGroupTracer {
+  const FrameContext& frame;
+  const Projection& projection;
+  const Pose& camera;
+  const RenderOptions& options;
+
+  void trace(int y, int x0, int x1, ColorLayers& out, std::uint64_t& rays) const {
+    const int spp = options.samples_per_pixel;
+    std::optional<PixelSamples> group[kBundleSize];
+    for (int x = x0; x < x1; ++x)
+      group[x - x0].emplace(frame, projection, camera, options.seed, x, y);
+    const int chunk = std::min(spp, kBundleSize);
+    for (int first = 0; first < spp; first += chunk) {
+      const int per_pixel = std::min(chunk, spp - first);
+      Sampler samplers[kBundleSize];
+      PathState paths[kBundleSize];
+      PixelLooks* looks[kBundleSize];
+      int lane = 0;
+      for (int x = x0; x < x1; ++x)
+        for (int i = 0; i < per_pixel; ++i, ++lane)
+          start(*group[x - x0], first + i, lane, samplers, paths, looks);
+      naming_pixels(
+          [&] { trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays); },
+          [&](int of) {
+            return std::pair{x0 + of / per_pixel, y};
+          });
+      lane = 0;
+      for (int x = x0; x < x1; ++x)
+        for (int i = 0; i < per_pixel; ++i) group[x - x0]->add(paths[lane++]);
+    }
+    for (int x = x0; x < x1; ++x) group[x - x0]->put_means(spp, out, x, y);
+  }
+
+ private:
+  // Sets up sample `index` of `pixel` in bundle lane `lane`.
+  void start(PixelSamples& pixel, int index, int lane, Sampler* samplers, PathState* paths,
+             PixelLooks** looks) const {
+    samplers[lane] = Sampler(pixel.keys, index, options.samples_per_pixel);
+    PathState& path = paths[lane];
+    path.origin = camera.translation();
+    path.dir = (camera.linear() * pixel.camera_rays(samplers[lane].next())).normalized();
+    path.spread = pixel.spread;
+    path.indirect_weight = indirect_weight(index);
+    looks[lane] = &pixel.looks;
+  }
+  // How much sample `index`'s indirect light counts (RenderOptions::indirect_samples).
+  double indirect_weight(int index) const {
+    const int indirect = options.indirect_samples, spp = options.samples_per_pixel;
+    if (indirect <= 0 || indirect >= spp) return 1;
+    return index < indirect ? double(spp) / indirect : 0;
+  }
+};
+
+// RenderOptions::pixels: whether (x, y) is traced, and the first traced pixel of row y from x on.
+bool traced(ImageView<const std::uint8_t> pixels, int x, int y) {
+  return !pixels.data || *pixels.pixel(x, y);
+}
+int next_traced(ImageView<const std::uint8_t> pixels, int y, int x, int end) {
+  while (x < end && !traced(pixels, x, y)) ++x;
+  return x;
+}
+
+}  // namespace
+
+ColorLayers color_layers_of(int width, int height) {
+  const int W = width, H = height;
+  return {Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
+          Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
+          Image<float>(W, H, 3)};
+}
+
+std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
+                         const Projection& projection, const Pose& camera,
+                         const RenderOptions& options, const PixelWindow& window,
+                         ColorLayers& out) {
+  std::atomic<std::uint64_t> rays{0};
+  const FrameContext frame{embree, images, lights, options.textures};
+  const PixelGroupTracer tracer{frame, projection, camera, options};
+  const int group_size = std::max(1, kBundleSize / std::max(1, options.samples_per_pixel));
+  // 2-D blocks: a rolling shutter's window is a single line
+  const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
+  tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
+    std::uint64_t block_rays = 0;
+    const int end = block.cols().end();
+    for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+      for (int x = next_traced(options.pixels, y, block.cols().begin(), end); x < end;) {
+        int group_end = x + 1;
+        while (group_end < std::min(x + group_size, end) && traced(options.pixels, group_end, y))
+          ++group_end;
+        tracer.trace(y, x, group_end, out, block_rays);
+        x = next_traced(options.pixels, y, group_end, end);
+      }
+    rays += block_rays;
+  });
+  return rays;
+}
+
+}  // namespace flowscape
