@@ -23,38 +23,6 @@ using Rgb = city_materials::Rgb;
 
 Pose at(const V3& p) { return Pose(Eigen::Translation3d(p)); }
 
-// The family a vehicle of `kind` is drawn as, and its livery.
-std::pair<Family, Livery> family_of(ActorKind kind, Random& random) {
-  switch (kind) {
-    case ActorKind::Truck:
-      return {Family::BoxTruck, Livery::Plain};
-    case ActorKind::Lorry:
-      return {Family::Lorry, Livery::Plain};
-    case ActorKind::Bus:
-      return {Family::CityBus, Livery::Plain};
-    case ActorKind::Bike:
-      return {Family::Bicycle, Livery::Plain};
-    case ActorKind::Motorbike:
-      return {Family::Motorbike, Livery::Plain};
-    default:
-      break;
-  }
-  static const Family kCars[] = {Family::Hatchback, Family::Saloon, Family::Estate,
-                                 Family::Suv,       Family::Pickup, Family::Van};
-  static const double kShares[] = {0.24, 0.22, 0.14, 0.2, 0.08, 0.12};
-  double u = random.uniform();
-  int k = 0;
-  while (k < 5 && (u -= kShares[k]) > 0) ++k;
-  const Family family = kCars[k];
-  const double l = random.uniform();
-  const Livery livery =
-      family == Family::Van && l < 0.3                                    ? Livery::Delivery
-      : (family == Family::Saloon || family == Family::Estate) && l < 0.1 ? Livery::Taxi
-      : (family == Family::Estate || family == Family::Suv) && l > 0.96   ? Livery::Police
-                                                                          : Livery::Plain;
-  return {family, livery};
-}
-
 // The generalized winding number of a point with respect to a mesh: about 1 inside a closed
 // surface, 0 outside (the solid angles of its triangles, Van Oosterom and Strackee).
 double winding(const Mesh& mesh, const V3& p) {

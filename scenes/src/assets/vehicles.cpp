@@ -11,25 +11,35 @@ VehicleModel two_wheeler(Family family, int variant, bool) {
   return two_wheeler_family(family, variant);
 }
 
-// Every family: its name, its fine class, and the builder of its file (cars.cpp,
-// heavy_vehicles.cpp, two_wheelers.cpp), in Family's order.
+// The odds of a family's liveries, tried in this order against one uniform draw l: delivery where
+// l < delivery, taxi where l < taxi, police where l > police.
+struct LiveryOdds {
+  double delivery = 0, taxi = 0, police = 1;
+};
+
+// Every family: its name, its fine class, the builder of its file (cars.cpp, heavy_vehicles.cpp,
+// two_wheelers.cpp), the traffic kind it is drawn for and its share of that kind's vehicles (in
+// table order), and its liveries; in Family's order.
 struct FamilyRow {
   const char* name;
   SemanticClass cls;
   VehicleModel (*build)(Family family, int variant, bool mirrors);
+  ActorKind kind;
+  double share = 1;
+  LiveryOdds liveries = {};
 };
 constexpr FamilyRow kFamilyTable[kFamilies] = {
-    {"hatchback", SemanticClass::Car, car_family},
-    {"saloon", SemanticClass::Car, car_family},
-    {"estate", SemanticClass::Car, car_family},
-    {"suv", SemanticClass::Car, car_family},
-    {"pickup", SemanticClass::Car, car_family},
-    {"van", SemanticClass::Car, car_family},
-    {"city_bus", SemanticClass::Bus, heavy},
-    {"box_truck", SemanticClass::Truck, heavy},
-    {"lorry", SemanticClass::Truck, heavy},
-    {"motorbike", SemanticClass::Motorcycle, two_wheeler},
-    {"bicycle", SemanticClass::Bicycle, two_wheeler},
+    {"hatchback", SemanticClass::Car, car_family, ActorKind::Car, 0.24},
+    {"saloon", SemanticClass::Car, car_family, ActorKind::Car, 0.22, {.taxi = 0.1}},
+    {"estate", SemanticClass::Car, car_family, ActorKind::Car, 0.14, {.taxi = 0.1, .police = 0.96}},
+    {"suv", SemanticClass::Car, car_family, ActorKind::Car, 0.2, {.police = 0.96}},
+    {"pickup", SemanticClass::Car, car_family, ActorKind::Car, 0.08},
+    {"van", SemanticClass::Car, car_family, ActorKind::Car, 0.12, {.delivery = 0.3}},
+    {"city_bus", SemanticClass::Bus, heavy, ActorKind::Bus},
+    {"box_truck", SemanticClass::Truck, heavy, ActorKind::Truck},
+    {"lorry", SemanticClass::Truck, heavy, ActorKind::Lorry},
+    {"motorbike", SemanticClass::Motorcycle, two_wheeler, ActorKind::Motorbike},
+    {"bicycle", SemanticClass::Bicycle, two_wheeler, ActorKind::Bike},
 };
 
 }  // namespace
@@ -37,6 +47,24 @@ constexpr FamilyRow kFamilyTable[kFamilies] = {
 std::string family_name(Family family) { return kFamilyTable[int(family)].name; }
 
 SemanticClass family_class(Family family) { return kFamilyTable[int(family)].cls; }
+
+std::pair<Family, Livery> family_of(ActorKind kind, Random& random) {
+  std::vector<int> rows;
+  for (int f = 0; f < kFamilies; ++f)
+    if (kFamilyTable[f].kind == kind) rows.push_back(f);
+  if (rows.empty()) return family_of(ActorKind::Car, random);  // no family of its own: a car
+  if (rows.size() == 1) return {Family(rows[0]), Livery::Plain};
+  double u = random.uniform();
+  std::size_t k = 0;
+  while (k + 1 < rows.size() && (u -= kFamilyTable[rows[k]].share) > 0) ++k;
+  const FamilyRow& row = kFamilyTable[rows[k]];
+  const double l = random.uniform();
+  const Livery livery = l < row.liveries.delivery ? Livery::Delivery
+                        : l < row.liveries.taxi   ? Livery::Taxi
+                        : l > row.liveries.police ? Livery::Police
+                                                  : Livery::Plain;
+  return {Family(rows[k]), livery};
+}
 
 Mesh labelled(Mesh mesh, SemanticClass cls) {
   std::fill(mesh.classes.begin(), mesh.classes.end(), cls);

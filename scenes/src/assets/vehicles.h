@@ -5,14 +5,17 @@
 // its own paint, plate and livery through the material slots (vehicle_body.h's Slot).
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "flowscape/core/random.h"
+#include "flowscape/scenes/city.h"
 #include "vehicle_body.h"
 
 namespace flowscape::assets {
 
-// A new family: its entry here, its row in vehicles.cpp's kFamilyTable (name, class, builder),
-// its builder, and its share of the traffic (city_models.cpp).
+// A new family: its entry here, its row in vehicles.cpp's kFamilyTable (name, class, builder,
+// the traffic kind it is drawn for and its share of it, its liveries), and its builder.
 enum class Family : std::uint8_t {
   Hatchback,
   Saloon,
@@ -33,6 +36,9 @@ SemanticClass family_class(Family family);  // the fine class (Car, Truck, Bus, 
 // Liveries painted over a family's own colours: taxis (saloons, estates), police (estates,
 // SUVs), delivery vans.
 enum class Livery : std::uint8_t { Plain, Taxi, Police, Delivery };
+// The family a vehicle of traffic kind `kind` is drawn as (by the families' shares of that kind)
+// and its livery (by the family's odds), from `random` (no draw for a kind of one family).
+std::pair<Family, Livery> family_of(ActorKind kind, Random& random);
 
 struct WheelMount {
   V3 hub;        // in the vehicle's frame (the trailer's for trailer wheels)
