@@ -14,7 +14,7 @@ for package in dnnl pybind11 Catch2 OpenMP_CXX_FLAGS; do
 done
 check "gen_flowscape links no oneDNN" bash -c "! grep -q dnnl '$off/apps/CMakeFiles/gen_flowscape.dir/link.txt'"
 check "no Python extension target" bash -c "! grep -rq flowscape_native '$off/Makefile'"
-check "the denoiser's absence compiles" make -s -C "$off/renderer" src/unet_absent.cpp.o
+check "the denoiser's absence compiles" make -s -C "$off/renderer" src/post/unet_absent.cpp.o
 
 wheel="$work/wheel"
 check "pip builds a wheel with the extension" env FLOWSCAPE_REQUIRE_EXTENSION=1 /usr/bin/python3 -m pip wheel \
