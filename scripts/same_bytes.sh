@@ -8,6 +8,11 @@
 #   scripts/same_bytes.sh BASE_REV [BUILD]   BASE_REV (a commit) built into build-same-bytes/<rev>
 #                                            (once; Release, tests off) against BUILD (default build/)
 #   scripts/same_bytes.sh BASE_BUILD [BUILD] an already built tree as the base
+#   SAME_BYTES_TREE=sequences scripts/same_bytes.sh ...
+#                                            compares only that folder of each release: the
+#                                            images, ground truth and meta.json, when a change adds
+#                                            an option (its key then enters config.json, the card,
+#                                            the manifest and the explorer's data)
 #
 # Prints one line per configuration and exits 1 if any file differs (its first differing files
 # named). Both builds run on this machine, so they run the same Embree kernels.
@@ -65,8 +70,9 @@ for entry in "${configs[@]}"; do
     "$bin/apps/gen_flowscape" "${options[@]}" --threads 2 --out "$work/$side-$name" >"$work/$side-$name.log" 2>&1 ||
       { echo "$name: the $side build failed: $(tail -n 1 "$work/$side-$name.log")"; failed=1; continue 2; }
   done
-  if differences=$(diff -rq "$work/base-$name" "$work/new-$name"); then
-    echo "$name: the same bytes ($(find "$work/new-$name" -type f | wc -l) files)"
+  tree=${SAME_BYTES_TREE:-.}
+  if differences=$(diff -rq "$work/base-$name/$tree" "$work/new-$name/$tree"); then
+    echo "$name: the same bytes ($(find "$work/new-$name/$tree" -type f | wc -l) files in $tree)"
   else
     echo "$name: DIFFERS: $(echo "$differences" | head -n 3 | tr '\n' ' ')"
     failed=1

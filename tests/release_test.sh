@@ -86,6 +86,28 @@ check "identical manifests" cmp "$work/a/manifest.json" "$work/b/manifest.json"
 check "identical files" diff -r "$work/a/sequences" "$work/b/sequences"
 check "a finished release is not redone" bash -c "'$bin/gen_flowscape' ${small[*]} --out '$work/b' 2>&1 | grep -q '64/64 frames'"
 
+# temporal reconstruction: the ground truth untouched, the colour not; frames redone alone (their
+# windows traced again) with another thread count give the same bytes; lens rigs; no --adaptive
+temporal=(--maps 1 --sequences-per-map 1 --frames 6 --resolution 24 --face-size 12 --spp 2
+  --vehicles 12 --pedestrians 6 --seed 5)
+check "--temporal 0" "$bin/gen_flowscape" "${temporal[@]}" --out "$work/t0"
+check "--temporal 2" "$bin/gen_flowscape" "${temporal[@]}" --temporal 2 --threads 1 --out "$work/t1"
+seq0=sequences/map00_seq00
+for kind in erp/flow erp/flow_backward erp/valid erp/depth cube/front/flow cube/front/instance; do
+  check "--temporal 2: $kind as without it" diff -r "$work/t0/$seq0/$kind" "$work/t1/$seq0/$kind"
+done
+check "--temporal 2: other colour" bash -c "! cmp -s '$work/t0/$seq0/erp/color/000002.png' '$work/t1/$seq0/erp/color/000002.png'"
+cp -r "$work/t1" "$work/t2"
+rm "$work/t2/$seq0/erp/color/000003.png" "$work/t2/$seq0/cube/left/color/000000.png" \
+  "$work/t2/manifest.json"
+check "--temporal 2: frames redone" "$bin/gen_flowscape" "${temporal[@]}" --temporal 2 --threads 2 --out "$work/t2"
+check "--temporal 2: the same bytes" diff -r "$work/t1" "$work/t2"
+check "--temporal with a lens rig and the final pass" "$bin/gen_flowscape" --maps 1 \
+  --sequences-per-map 1 --frames 3 --resolution 16 --spp 1 --rig fisheye --outputs final \
+  --temporal 1 --out "$work/t3"
+check "--temporal with --adaptive refused" fails_clearly "temporal and adaptive do not go together" \
+  "$bin/gen_flowscape" "${temporal[@]}" --temporal 1 --adaptive 0.25 --out "$work/t4"
+
 check "gen_flowscape --demo (the README's first command)" "$bin/gen_flowscape" --demo --out "$work/demo"
 check "the demo release" test -s "$work/demo/manifest.json" -a -d "$work/demo/sequences/map00_seq01/cube/front/flow"
 check "--no-cube writes ERP only" "$bin/gen_flowscape" --maps 1 --sequences-per-map 1 --frames 2 --resolution 16 --spp 1 --no-cube --out "$work/c"

@@ -69,6 +69,8 @@ void validate(const ReleaseConfig& c) {
   for (const std::string& sky : c.skies) validate_sky(sky);
   require(c.vehicles + c.pedestrians <= 200, "vehicles + pedestrians must be in 0..200");
   require(c.asset_packs.empty() || c.actors == "detailed", "asset_packs need detailed actors");
+  require(c.temporal == 0 || c.adaptive == 0,
+          "temporal and adaptive do not go together (adaptive sampling picks pixels per frame)");
   for (const std::string& pack : c.asset_packs) asset_pack(pack);
   class_table(c.classes);
   for (const auto& [kind, path] : c.models) {
@@ -90,7 +92,7 @@ void validate(const ReleaseConfig& c) {
 }
 
 ColorSection color_section(const ReleaseConfig& c) {
-  return {c.spp, c.indirect_spp, c.max_bounces, c.adaptive, c.denoise, c.denoise_model};
+  return {c.spp, c.indirect_spp, c.max_bounces, c.adaptive, c.temporal, c.denoise, c.denoise_model};
 }
 
 FinalPassSection final_pass_section(const ReleaseConfig& c) {

@@ -1,12 +1,30 @@
 #include "flowscape/release/frame_pipeline.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "flowscape/core/profile.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/layout/classes.h"
 #include "flowscape/renderer/rolling_shutter.h"
+#include "flowscape/renderer/temporal.h"
 
 namespace flowscape {
+
+LayerHistory::Frame& LayerHistory::frame(int view, int frame, const std::function<Frame()>& trace) {
+  const std::pair<int, int> key{frame, view};
+  auto found = frames_.find(key);
+  if (found == frames_.end()) found = frames_.emplace(key, trace()).first;
+  return found->second;
+}
+
+void LayerHistory::drop_before(int frame) {
+  frames_.erase(frames_.begin(), frames_.lower_bound({frame, std::numeric_limits<int>::min()}));
+}
+
 namespace {
+
+constexpr int kCubeView = -1;  // the stacked cube faces' frames in a LayerHistory
 
 // The kinds beside the clean colour and the ground truth (empty where the layout has none).
 struct CameraImages {
@@ -80,8 +98,9 @@ CameraImages virtual_camera_images(const ReleaseLayout& layout, const Projection
 
 // A directly rendered camera: the ERP of the flowscape rig without faces, or a rig's camera.
 struct DirectCamera {
+  const RigCamera* rig_camera;  // null: the flowscape rig's ERP, at the rig's own centre
   const Projection& projection;
-  const TruthRequest& request;  // what its colour is traced for
+  const TruthRequest& request;  // what its ground truth is cast and its colour traced for
   CameraTrack track;            // where it is over the final pass's shutter
   Readout readout;
   bool real_lens;  // a physical camera (vignetting, drops and dirt), not a virtual one
@@ -93,13 +112,114 @@ struct CameraColor {
   Image<std::uint8_t> clean, final;
 };
 
-// Its colour: the layers path traced, the release's denoiser, sRGB; with the final pass (exposure
-// not null) its shutter, sensor and development.
+GroundTruth timed_truth(Renderer& renderer, const Projection& camera, const TruthRequest& request) {
+  const ScopedPhase phase("ground truth");
+  return renderer.ground_truth(camera, request);
+}
+
+// Temporal reconstruction's window around `frame`: its first and last frames.
+std::pair<int, int> window_of(const FramePipeline& p, int frame) {
+  return {std::max(0, frame - p.color.temporal), std::min(p.frames - 1, frame + p.color.temporal)};
+}
+
+// With temporal reconstruction, what a frame's ground truth is cast for: the layout's targets
+// (truth_plan), then one at each other frame of the window, in order; a rig camera's at it.
+TruthRequest windowed_request(const FramePipeline& p, const RigCamera* camera, int frame) {
+  TruthRequest request = truth_plan(p.sequence, p.layout, frame, p.frames).request;
+  const auto [first, last] = window_of(p, frame);
+  for (int f = first; f <= last; ++f)
+    if (f != frame) request.more.push_back(p.sequence.moment(f));
+  return camera ? at_camera(request, *camera) : request;
+}
+
+// A directly rendered camera's frame as the history keeps it: its raw layers, and its ground
+// truth with the window's targets.
+LayerHistory::Frame traced_view(const FramePipeline& p, const DirectCamera& camera, int frame) {
+  const TruthRequest request = windowed_request(p, camera.rig_camera, frame);
+  GroundTruth truth = timed_truth(p.renderer, camera.projection, request);
+  ColorLayers layers = traced_layers(p.renderer, camera.projection, request,
+                                     p.sequence.color_options(p.color, frame));
+  Image<std::uint16_t> instance = truth.instance;
+  return {std::move(layers), std::move(instance), std::move(truth)};
+}
+
+// The stacked cube faces' frame likewise.
+LayerHistory::Frame traced_cube(const FramePipeline& p, int frame) {
+  const int face_size = p.cube_to_erp->face_size;
+  CubeFrame cube = render_cube(p.renderer, face_size, windowed_request(p, nullptr, frame), nullptr);
+  {
+    const ScopedPhase phase("path tracing");
+    cube.color = cube_color_layers(p.renderer, face_size, p.sequence.frame_pair(frame),
+                                   p.sequence.color_options(p.color, frame));
+  }
+  Image<std::uint16_t> instance = cube.truth.instance;
+  return {std::move(cube.color), std::move(instance), std::move(cube.truth)};
+}
+
+// A view's layers of a frame with its window's frames reprojected in (temporal.h), each frame
+// traced once (`trace`) and kept in the history; `truth` is the frame's, with the window's targets.
+ColorLayers reconstructed(const FramePipeline& p, int view, int frame, const GroundTruth& truth,
+                          const std::function<LayerHistory::Frame(int)>& trace,
+                          const TemporalOptions& options) {
+  const auto [first, last] = window_of(p, frame);
+  const auto traced = [&](int f) -> const LayerHistory::Frame& {
+    return p.history->frame(view, f, [&] { return trace(f); });
+  };
+  const LayerHistory::Frame& centre = traced(frame);
+  std::vector<TemporalNeighbour> neighbours;
+  std::size_t target = truth_plan(p.sequence, p.layout, frame, p.frames).steps.size();
+  for (int f = first; f <= last; ++f) {
+    if (f == frame) continue;
+    const LayerHistory::Frame& their = traced(f);
+    const FlowTruth& to = truth.more[target++];
+    neighbours.push_back({&their.layers, their.instance.view(), to.flow.view(), to.valid.view()});
+  }
+  const ScopedPhase phase("temporal reconstruction");
+  return temporal_layers(centre.layers, centre.instance.view(), neighbours, options);
+}
+
+// A directly rendered camera's ground truth of a frame: with temporal reconstruction the one cast
+// when the history traced the frame, else cast now.
+GroundTruth camera_truth(const FramePipeline& p, const DirectCamera& camera, int frame) {
+  if (!p.history) return timed_truth(p.renderer, camera.projection, camera.request);
+  return std::move(
+      p.history->frame(camera.view, frame, [&] { return traced_view(p, camera, frame); }).truth);
+}
+
+// Its layers of a frame: path traced, or with temporal reconstruction its history's
+// reconstructed over the window.
+ColorLayers camera_layers(const FramePipeline& p, const DirectCamera& camera, int frame,
+                          const GroundTruth& truth) {
+  if (!p.history)
+    return release_layers(p.color, p.sequence, p.renderer, camera.projection, camera.request, frame,
+                          truth);
+  return reconstructed(p, camera.view, frame, truth,
+                       [&](int f) { return traced_view(p, camera, f); },
+                       {.wraps = camera.projection.wraps_around()});
+}
+
+// The stacked cube faces' ground truth and colour layers of a frame, likewise.
+CubeFrame cube_frame(const FramePipeline& p, const TruthPlan& plan, int frame) {
+  const int face_size = p.cube_to_erp->face_size;
+  if (!p.history) {
+    CubeFrame cube = render_cube(p.renderer, face_size, plan.request, nullptr);
+    cube.color = release_cube_layers(p.color, face_size, p.sequence, p.renderer, cube.truth, frame);
+    return cube;
+  }
+  CubeFrame cube;
+  cube.truth =
+      std::move(p.history->frame(kCubeView, frame, [&] { return traced_cube(p, frame); }).truth);
+  cube.color = reconstructed(p, kCubeView, frame, cube.truth,
+                             [&](int f) { return traced_cube(p, f); }, {.tile_height = face_size});
+  return cube;
+}
+
+// Its colour: the layers path traced (and reconstructed over the temporal window), the release's
+// denoiser, sRGB; with the final pass (exposure not null) its shutter, sensor and development.
 CameraColor camera_color(const FramePipeline& p, const DirectCamera& camera, int frame,
                          const GroundTruth& truth, Exposure* exposure) {
   CameraColor out;
-  out.layers = release_layers(p.color, p.sequence, p.renderer, camera.projection, camera.request,
-                              frame, truth);
+  out.layers = camera_layers(p, camera, frame, truth);
   const Image<float> color = denoised_color(p.color, out.layers, camera.projection,
                                             truth.depth.view(), truth.instance.view());
   out.clean = linear_to_srgb8(color.view());
@@ -116,19 +236,13 @@ CameraColor camera_color(const FramePipeline& p, const DirectCamera& camera, int
   return out;
 }
 
-GroundTruth timed_truth(Renderer& renderer, const Projection& camera, const TruthRequest& request) {
-  const ScopedPhase phase("ground truth");
-  return renderer.ground_truth(camera, request);
-}
-
 // The flowscape rig's faces and the ERP stitched from them: the faces path traced and denoised
 // face by face, the ERP colour resampled from theirs (the final pass's likewise).
 FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan, int frame,
                                    GroundTruth erp_truth, Exposure* exposure) {
   const int face_size = p.cube_to_erp->face_size;
   const Projection& erp = p.rig.cameras.front().projection;
-  CubeFrame cube = render_cube(p.renderer, face_size, plan.request, nullptr);
-  cube.color = release_cube_layers(p.color, face_size, p.sequence, p.renderer, cube.truth, frame);
+  CubeFrame cube = cube_frame(p, plan, frame);
   const Image<float> faces_color = denoised_cube_color(p.color, cube.color, cube.truth);
   const Image<float> erp_color = [&] {
     const ScopedPhase phase("cube to ERP");
@@ -159,13 +273,12 @@ FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan
 FrameImages render_flowscape_frame(const FramePipeline& p, int frame, Exposure* exposure) {
   const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
   const Projection& erp = p.rig.cameras.front().projection;
-  GroundTruth truth = timed_truth(p.renderer, erp, plan.request);
-  if (p.cube_to_erp) return faces_and_stitched_erp(p, plan, frame, std::move(truth), exposure);
-  const TruthRequest pair{p.sequence.frame_pair(frame)};
-  const Sequence& sequence = p.sequence;
-  CameraColor color = camera_color(
-      p, {erp, pair, [&](double t) { return sequence.city.rig(t); }, {}, false, 0, true}, frame,
-      truth, exposure);
+  if (p.cube_to_erp)
+    return faces_and_stitched_erp(p, plan, frame, timed_truth(p.renderer, erp, plan.request),
+                                  exposure);
+  const DirectCamera camera{nullptr, erp, plan.request, plan.request.track, {}, false, 0, true};
+  GroundTruth truth = camera_truth(p, camera, frame);
+  CameraColor color = camera_color(p, camera, frame, truth, exposure);
   FrameImages images;
   images.views.emplace_back(
       View(), view_images(std::move(truth), std::move(color.clean), plan.steps, p.classes,
@@ -180,10 +293,11 @@ FrameImages render_rig_frame(const FramePipeline& p, int frame, Exposure* exposu
   for (const RigCamera& camera : p.rig.cameras) try {
       const int view = int(&camera - p.rig.cameras.data());
       const TruthRequest request = at_camera(plan.request, camera);
-      GroundTruth truth = timed_truth(p.renderer, camera.projection, request);
-      CameraColor color = camera_color(
-          p, {camera.projection, request, request.track, camera.readout, true, view, view == 0},
-          frame, truth, exposure);
+      const DirectCamera direct{&camera,       camera.projection, request,
+                                request.track, camera.readout,    true,
+                                view,          view == 0};
+      GroundTruth truth = camera_truth(p, direct, frame);
+      CameraColor color = camera_color(p, direct, frame, truth, exposure);
       CameraImages extras{std::move(color.final)};
       if (p.layout.has("time"))
         extras.time = capture_times(camera.projection, camera.readout, request.pair.time);

@@ -271,6 +271,17 @@ const std::vector<ReleaseOption>& release_options() {
        .help = "share of the pixels (0-1) that take half of --spp where the denoised colour is "
                "estimated worst, the others the first half only; 0: every pixel --spp "
                "(docs/release.md, \"Adaptive sampling\")"},
+      {.key = "temporal",
+       .field = &C::temporal,
+       .section = Section::Render,
+       .flag = "--temporal",
+       .min = 0,
+       .max = 8,
+       .special = "0: each frame alone",
+       .help = "temporal reconstruction: each frame's colour layers averaged with those of the K "
+               "frames before and after it along the exact flow, history rejected where the "
+               "shading changed, before the denoiser (docs/renderer.md, \"Temporal "
+               "reconstruction\"; not with --adaptive)"},
       {.key = "denoise",
        .field = &C::denoise,
        .section = Section::Render,

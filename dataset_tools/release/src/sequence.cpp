@@ -97,7 +97,8 @@ RenderOptions Sequence::color_options(const ColorSection& color_settings, int fr
 }
 
 std::unique_ptr<const Denoiser> release_denoiser(const ColorSection& color_settings) {
-  return make_denoiser(color_settings.denoise, color_settings.denoise_model);
+  return make_denoiser(color_settings.denoise, color_settings.denoise_model,
+                       color_settings.temporal > 0);
 }
 
 Image<float> denoised_cube_color(const ColorSection& color_settings, const ColorLayers& color,
@@ -140,16 +141,19 @@ Image<float> release_color(const ColorSection& color_settings, const Sequence& s
       truth.depth.view(), truth.instance.view());
 }
 
+ColorLayers traced_layers(Renderer& renderer, const Projection& camera, const TruthRequest& view,
+                          const RenderOptions& options) {
+  const ScopedPhase phase("path tracing");
+  return view.readout.global()
+             ? renderer.color_layers(camera, view.pair, options)
+             : renderer.color_layers(camera, view.pair.time, view.track, view.readout, options);
+}
+
 ColorLayers release_layers(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth) {
   return adaptive_color_layers(
-      [&](const RenderOptions& options) {
-        const ScopedPhase phase("path tracing");
-        return view.readout.global() ? renderer.color_layers(camera, view.pair, options)
-                                     : renderer.color_layers(camera, view.pair.time, view.track,
-                                                             view.readout, options);
-      },
+      [&](const RenderOptions& options) { return traced_layers(renderer, camera, view, options); },
       [&](const ColorLayers& layers) {
         return denoised_color(color_settings, layers, camera, truth.depth.view(),
                               truth.instance.view());

@@ -201,7 +201,9 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     statistics[std::size_t(f)] = write_frame(dir, layout, f, config.frames, images);
     progress.frame_done();
   };
+  LayerHistory history;  // temporal reconstruction's frames
   for (int f = 0; f < config.frames; ++f) {
+    history.drop_before(f - config.temporal);
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
       if (final)
         exposures[std::size_t(f)] = exposure = exposure_after(
@@ -220,7 +222,8 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
       try {
         return render_frame(
             {color_section(config), final_pass_section(config), class_table(config.classes),
-             config.frames, layout, rig, sequence, *renderer, faces ? &map : nullptr},
+             config.frames, layout, rig, sequence, *renderer, faces ? &map : nullptr,
+             config.temporal > 0 ? &history : nullptr},
             f, frame_exposure);
       } catch (const RayError& e) {  // the ERP's, or a face's or rig camera's already named
         throw std::runtime_error(plan.name + ", frame " + std::to_string(f) + ", " +

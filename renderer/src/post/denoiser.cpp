@@ -12,18 +12,26 @@ namespace {
 
 class Atrous : public Denoiser {
  public:
+  explicit Atrous(bool temporal) {
+    // over several frames the indirect light's variance is steady enough to stop at its edges
+    // (bench_temporal)
+    if (temporal) options_.luminance_tolerance[1] = 4;
+  }
   Image<float> view(const ColorLayers& layers, const Projection& camera,
                     ImageView<const float> depth,
                     ImageView<const std::uint16_t> instance) const override {
-    return denoise(layers, {&camera, depth, instance});
+    return denoise(layers, {&camera, depth, instance}, options_);
   }
   Image<float> cube(const ColorLayers& layers, const GroundTruth& truth) const override {
-    return denoise_cube(layers, truth);
+    return denoise_cube(layers, truth, options_);
   }
   bool guided_by_depth() const override { return true; }
   std::string description() const override {
     return "denoised (a-trous, guided by albedo, normal, depth, instance)";
   }
+
+ private:
+  DenoiseOptions options_;
 };
 
 // OIDN's U-Net of one size, its weights read once per process however many denoisers use them.
@@ -71,10 +79,11 @@ class Raw : public Denoiser {
 
 }  // namespace
 
-std::unique_ptr<const Denoiser> make_denoiser(const std::string& name, const std::string& model) {
+std::unique_ptr<const Denoiser> make_denoiser(const std::string& name, const std::string& model,
+                                              bool temporal) {
   if (model != "default" && model != "small")
     throw std::invalid_argument("denoise_model must be default or small");
-  if (name == "atrous") return std::make_unique<const Atrous>();
+  if (name == "atrous") return std::make_unique<const Atrous>(temporal);
   if (name == "none") return std::make_unique<const Raw>();
   if (name != "oidn") throw std::invalid_argument("denoise must be atrous, oidn or none");
   if (!neural_denoiser_built())

@@ -34,9 +34,11 @@ class Denoiser {
 
 inline const std::vector<std::string> kDenoiserNames = {"atrous", "oidn", "none"};
 
-// The denoiser of a name, `model` the U-Net's size for oidn ("default" or "small"). Throws
+// The denoiser of a name, `model` the U-Net's size for oidn ("default" or "small"); `temporal`:
+// its layers reconstructed over several frames (temporal.h), which a-trous filters less. Throws
 // std::invalid_argument for an unknown name or model, or for oidn in a build without the U-Net.
 std::unique_ptr<const Denoiser> make_denoiser(const std::string& name,
-                                              const std::string& model = "default");
+                                              const std::string& model = "default",
+                                              bool temporal = false);
 
 }  // namespace flowscape

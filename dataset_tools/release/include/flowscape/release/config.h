@@ -31,6 +31,10 @@ struct ReleaseConfig {
   // default): every pixel spp. Needs spp >= 4 (fewer: uniform). At equal samples 0.25 gains
   // 0.5-1.5 dB and costs 40 % more colour time (docs/release.md, "Adaptive sampling").
   double adaptive = 0;
+  // Temporal reconstruction (renderer/temporal.h): the colour layers of the `temporal` frames
+  // before and after each frame reprojected along the exact flow and averaged into its own before
+  // the denoiser, where their shading agrees; 0: every frame alone.
+  int temporal = 0;
   // The colour's denoiser: "atrous" (renderer/denoise.h), "oidn" (OIDN's U-Net,
   // renderer/neural_denoise.h, of size denoise_model: default or small), or "none": raw.
   std::string denoise = "atrous", denoise_model = "default";
@@ -129,6 +133,7 @@ void check_sky_resolution(const ReleaseConfig& config);
 struct ColorSection {
   int spp, indirect_spp, max_bounces;
   double adaptive;
+  int temporal;
   std::string denoise, denoise_model;
 };
 ColorSection color_section(const ReleaseConfig& config);

@@ -4,6 +4,7 @@
 // path traced (adaptive sampling where asked), denoised by the release's denoiser, and with the
 // final pass its shutter, sensor and development; the ground truth is ray cast beside it. The
 // writer (writer.h) only writes what it gets (Kubric's render-to-a-dict-of-layers, then writers).
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -28,6 +29,24 @@ struct FrameImages {
   std::vector<std::pair<View, ViewImages>> views;  // its ERP, or each camera of a rig in order
 };
 
+// The raw colour layers (and instance ids) of each view's frames that temporal reconstruction's
+// windows still need (ColorSection::temporal), each traced once however the frames are asked for:
+// a sequence resumed at frame f traces the frames before f its window reaches, the same bytes.
+class LayerHistory {
+ public:
+  struct Frame {
+    ColorLayers layers;  // raw, as traced
+    Image<std::uint16_t> instance;
+    GroundTruth truth;  // with the window's targets after the layout's, until the frame takes it
+  };
+  // View `view`'s (-1: the stacked cube faces) frame `frame`, made by `trace` the first time.
+  Frame& frame(int view, int frame, const std::function<Frame()>& trace);
+  void drop_before(int frame);  // forgets every view's frames before `frame`
+
+ private:
+  std::map<std::pair<int, int>, Frame> frames_;  // by frame, then view
+};
+
 // What every frame of a sequence shares.
 struct FramePipeline {
   ColorSection color;
@@ -38,7 +57,8 @@ struct FramePipeline {
   const Rig& rig;  // release_rig(config)
   const Sequence& sequence;
   Renderer& renderer;
-  const CubeToErp* cube_to_erp;  // the flowscape rig's faces to its ERP; null without faces
+  const CubeToErp* cube_to_erp;     // the flowscape rig's faces to its ERP; null without faces
+  LayerHistory* history = nullptr;  // with temporal reconstruction (color.temporal > 0)
 };
 
 // Frame `frame`'s images. With the final pass, `exposure` (the one after the previous frame)

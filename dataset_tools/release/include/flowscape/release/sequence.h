@@ -86,6 +86,9 @@ Image<float> release_color(const ColorSection& color_settings, const Sequence& s
 Image<float> release_color(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,
                            int frame, const GroundTruth& truth);
+// A view's colour layers path traced as `view` says (its pair, or its rolling shutter's lines).
+ColorLayers traced_layers(Renderer& renderer, const Projection& camera, const TruthRequest& view,
+                          const RenderOptions& options);
 // Its colour layers, before denoised_color.
 ColorLayers release_layers(const ColorSection& color_settings, const Sequence& sequence,
                            Renderer& renderer, const Projection& camera, const TruthRequest& view,

@@ -1,0 +1,191 @@
+// Temporal reconstruction (ReleaseConfig::temporal, renderer/temporal.h) against each frame alone
+// (today's default, temporal 0) in the same run, per weather and time of day: a sequence of map 0
+// written by the release writer with the ERP rendered directly (--no-cube), each variant's
+// 8-bit colour against a converged reference of the same frames (raw, every sample gathering
+// indirect light):
+// - non-sky PSNR (dB) of each frame, averaged over the frames;
+// - PE between consecutive frames: |I(t) - I(t+1) warped back by the exact flow|, 8-bit levels
+//   averaged over the channels, over the non-sky pixels visible in both (the paper's Table II
+//   measure; photoconsistency.h's WPE), and its ratio to the converged frames' PE (target: within
+//   +-10 %);
+// - the relative error of non-sky linear colour (sRGB decoded; night and dusk against the day's);
+// - the seconds per frame of the whole sequence (colour, ground truth, files), as a ratio to
+//   temporal 0's.
+// Usage: bench_temporal [ERP height = 64] [reference spp = 512] [frames = 6]
+//                       [windows = 1,2,3] [conditions = all: sunny,cloud,fog,rain,dawn,dusk,night]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "flowscape/core/profile.h"
+#include "flowscape/formats/image_io.h"
+#include "flowscape/formats/srgb.h"
+#include "flowscape/layout/layout.h"
+#include "flowscape/quality/photoconsistency.h"
+#include "flowscape/release/sequence.h"
+#include "flowscape/release/writer.h"
+#include "frame_quality.h"
+
+using namespace flowscape;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> split(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
+}
+
+// The converged frames of a sequence and their ground truth.
+struct Reference {
+  std::vector<GroundTruth> truth;
+  std::vector<Image<float>> color;
+};
+
+Reference reference(const ReleaseConfig& config, const SequencePlan& plan, int spp) {
+  const Sequence sequence = make_sequence(sequence_spec(config, plan));
+  Renderer renderer(sequence.city.scene);
+  const Projection erp = Projection::equirectangular(config.height);
+  Reference r;
+  for (int f = 0; f < config.frames; ++f) {
+    const FramePair pair = sequence.frame_pair(f);
+    r.truth.push_back(renderer.ground_truth(erp, pair));
+    r.color.push_back(
+        renderer.color(erp, pair, {spp, config.max_bounces, sequence.color_seed(f) + 1}));
+  }
+  return r;
+}
+
+// PE of frame t to t + 1 over the non-sky pixels visible in both.
+double consecutive_pe(const Image<std::uint8_t>& first, const Image<std::uint8_t>& second,
+                      const GroundTruth& truth) {
+  Image<std::uint8_t> surface(first.width, first.height, 1);
+  for (std::size_t i = 0; i < surface.data.size(); ++i)
+    surface.data[i] = truth.semantic.data[i] != std::uint8_t(SemanticClass::Sky);
+  return photo_errors({first.view(), second.view(), truth.flow.view(), surface.view(),
+                       truth.valid.view(), true})
+      .wpe_visible;
+}
+
+Image<float> linear(const Image<std::uint8_t>& srgb) {
+  Image<float> out(srgb.width, srgb.height, 3);
+  for (std::size_t i = 0; i < out.data.size(); ++i)
+    out.data[i] = float(srgb8_to_linear(srgb.data[i]));
+  return out;
+}
+
+// Relative error of non-sky linear colour, sum (c - r)^2 / sum r^2 (r clipped as a camera would).
+double relative_error(const Image<float>& image, const Image<float>& reference,
+                      const GroundTruth& truth) {
+  double error = 0, energy = 0;
+  for (std::size_t i = 0; i < truth.semantic.data.size(); ++i) {
+    if (truth.semantic.data[i] == std::uint8_t(SemanticClass::Sky)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double r = std::clamp(double(reference.data[3 * i + c]), 0.0, 1.0);
+      const double d = image.data[3 * i + c] - r;
+      error += d * d, energy += r * r;
+    }
+  }
+  return error / std::max(energy, 1e-30);
+}
+
+struct Figures {
+  double psnr = 0, pe = 0, relative = 0, seconds = 0;
+  std::string phases;  // seconds per frame by stage
+};
+
+std::string phase_line(int frames) {
+  std::string line;
+  char text[96];
+  for (const PhaseTime& phase : phase_times()) {
+    std::snprintf(text, sizeof text, "%s%s %.3f", line.empty() ? "" : ", ", phase.name.c_str(),
+                  phase.seconds / frames);
+    line += text;
+  }
+  return line;
+}
+
+Figures measure(const ReleaseConfig& config, const SequencePlan& plan, const Reference& ref,
+                const fs::path& out) {
+  fs::remove_all(out);
+  reset_phase_times();
+  const auto start = std::chrono::steady_clock::now();
+  write_sequence(config, plan, out, {[] {}, [] {}});
+  Figures f;
+  f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
+              config.frames;
+  f.phases = phase_line(config.frames);
+  std::vector<Image<std::uint8_t>> frames;
+  for (int t = 0; t < config.frames; ++t)
+    frames.push_back(read_image<std::uint8_t>(sequence_dir(out, plan.name) /
+                                              frame_file(output_kind("color"), View(), t)));
+  for (int t = 0; t < config.frames; ++t) {
+    f.psnr +=
+        psnr(linear(frames[std::size_t(t)]), ref.color[std::size_t(t)], ref.truth[std::size_t(t)]) /
+        config.frames;
+    f.relative += relative_error(linear(frames[std::size_t(t)]), ref.color[std::size_t(t)],
+                                 ref.truth[std::size_t(t)]) /
+                  config.frames;
+    if (t + 1 < config.frames)
+      f.pe += consecutive_pe(frames[std::size_t(t)], frames[std::size_t(t) + 1],
+                             ref.truth[std::size_t(t)]) /
+              (config.frames - 1);
+  }
+  return f;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int height = argc > 1 ? std::atoi(argv[1]) : 64;
+  const int reference_spp = argc > 2 ? std::atoi(argv[2]) : 512;
+  const int frames = argc > 3 ? std::atoi(argv[3]) : 6;
+  std::vector<int> windows;
+  for (const std::string& w : split(argc > 4 ? argv[4] : "1,2,3")) windows.push_back(std::stoi(w));
+  const std::vector<std::string> conditions =
+      split(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
+  const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
+  std::printf("bench_temporal: map 0, %d frames, %d x %d ERP (no cube), reference %d spp raw\n",
+              frames, height, 2 * height, reference_spp);
+  std::printf("  %-8s %-12s %8s %8s %8s %10s %9s %8s\n", "", "pipeline", "PSNR dB", "PE", "PE/conv",
+              "rel. err", "s/frame", "time x");
+  for (const std::string& condition : conditions) {
+    ReleaseConfig config;
+    config.maps = 1, config.sequences_per_map = 1, config.frames = frames;
+    config.height = height, config.cube = false, config.outputs = {};
+    const bool time_of_day = condition == "dawn" || condition == "dusk" || condition == "night";
+    config.weathers = {time_of_day ? "sunny" : condition};
+    config.times_of_day = {time_of_day ? condition : "day"};
+    const SequencePlan plan = plan_sequences(config).front();
+    const Reference ref = reference(config, plan, reference_spp);
+    double converged_pe = 0;
+    std::vector<Image<std::uint8_t>> converged;
+    for (const Image<float>& c : ref.color) converged.push_back(linear_to_srgb8(c.view()));
+    for (int t = 0; t + 1 < frames; ++t)
+      converged_pe += consecutive_pe(converged[std::size_t(t)], converged[std::size_t(t) + 1],
+                                     ref.truth[std::size_t(t)]) /
+                      (frames - 1);
+    std::printf("  %-8s %-12s %8s %8.3f %8s\n", condition.c_str(), "converged", "", converged_pe,
+                "1.00");
+    config.temporal = 0;
+    const Figures alone = measure(config, plan, ref, scratch / "alone");
+    std::printf("  %-8s %-12s %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
+                "each frame", alone.psnr, alone.pe, alone.pe / converged_pe, alone.relative,
+                alone.seconds, 1.0);
+    std::printf("      s/frame by stage: %s\n", alone.phases.c_str());
+    for (int window : windows) {
+      config.temporal = window;
+      const Figures f = measure(config, plan, ref, scratch / ("temporal" + std::to_string(window)));
+      std::printf("  %-8s temporal %-3d %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
+                  window, f.psnr, f.pe, f.pe / converged_pe, f.relative, f.seconds,
+                  f.seconds / alone.seconds);
+      std::printf("      s/frame by stage: %s\n", f.phases.c_str());
+    }
+    std::fflush(stdout);
+  }
+  fs::remove_all(scratch);
+}
