@@ -122,14 +122,44 @@ std::pair<int, int> window_of(const FramePipeline& p, int frame) {
   return {std::max(0, frame - p.color.temporal), std::min(p.frames - 1, frame + p.color.temporal)};
 }
 
-// With temporal reconstruction, what a frame's ground truth is cast for: the layout's targets
-// (truth_plan), then one at each other frame of the window, in order; a rig camera's at it.
-TruthRequest windowed_request(const FramePipeline& p, const RigCamera* camera, int frame) {
-  TruthRequest request = truth_plan(p.sequence, p.layout, frame, p.frames).request;
+// The steps from `frame` to the other frames of its window that its ground truth does not reach
+// already (the next frame, the layout's flow steps).
+std::vector<int> window_only_steps(const FramePipeline& p, const TruthPlan& plan, int frame) {
   const auto [first, last] = window_of(p, frame);
+  std::vector<int> steps;
   for (int f = first; f <= last; ++f)
-    if (f != frame) request.more.push_back(p.sequence.moment(f));
-  return camera ? at_camera(request, *camera) : request;
+    if (const int step = f - frame;
+        step != 0 && step != 1 &&
+        std::find(plan.steps.begin(), plan.steps.end(), step) == plan.steps.end())
+      steps.push_back(step);
+  return steps;
+}
+
+// With temporal reconstruction, what a frame's ground truth is cast for: the layout's targets
+// (truth_plan), then the window's other frames it lacks, in order; a rig camera's at it.
+TruthRequest windowed_request(const FramePipeline& p, const RigCamera* camera, int frame) {
+  TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
+  for (int step : window_only_steps(p, plan, frame))
+    plan.request.more.push_back(p.sequence.moment(frame + step));
+  return camera ? at_camera(plan.request, *camera) : plan.request;
+}
+
+// Where frame `frame`'s pixels are seen in frame `frame + step` (a windowed_request's truth).
+struct FlowView {
+  ImageView<const float> flow;
+  ImageView<const std::uint8_t> valid;
+};
+FlowView flow_to(const FramePipeline& p, const GroundTruth& truth, int frame, int step) {
+  if (step == 1) return {truth.flow.view(), truth.valid.view()};
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
+  const std::vector<int> window = window_only_steps(p, plan, frame);
+  const auto in_plan = std::find(plan.steps.begin(), plan.steps.end(), step);
+  const std::size_t k =
+      in_plan != plan.steps.end()
+          ? std::size_t(in_plan - plan.steps.begin())
+          : plan.steps.size() +
+                std::size_t(std::find(window.begin(), window.end(), step) - window.begin());
+  return {truth.more[k].flow.view(), truth.more[k].valid.view()};
 }
 
 // A directly rendered camera's frame as the history keeps it: its raw layers, and its ground
@@ -167,12 +197,11 @@ ColorLayers reconstructed(const FramePipeline& p, int view, int frame, const Gro
   };
   const LayerHistory::Frame& centre = traced(frame);
   std::vector<TemporalNeighbour> neighbours;
-  std::size_t target = truth_plan(p.sequence, p.layout, frame, p.frames).steps.size();
   for (int f = first; f <= last; ++f) {
     if (f == frame) continue;
     const LayerHistory::Frame& their = traced(f);
-    const FlowTruth& to = truth.more[target++];
-    neighbours.push_back({&their.layers, their.instance.view(), to.flow.view(), to.valid.view()});
+    const FlowView to = flow_to(p, truth, frame, f - frame);
+    neighbours.push_back({&their.layers, their.instance.view(), to.flow, to.valid});
   }
   const ScopedPhase phase("temporal reconstruction");
   return temporal_layers(centre.layers, centre.instance.view(), neighbours, options);

@@ -26,30 +26,6 @@ struct Tiles {
   int of(int y) const { return y / height; }
 };
 
-// The variance channels, each the mean of the 3 x 3 pixels around (within the tile): the
-// estimate from a few samples is itself noisy.
-Image<float> smoothed_variance(const Image<float>& variance, bool wraps, Tiles tiles) {
-  const int W = variance.width, H = variance.height;
-  Image<float> out(W, H, 3);
-  tbb::parallel_for(0, H, [&](int y) {
-    for (int x = 0; x < W; ++x) {
-      std::array<float, 3> sum{};
-      int n = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int ny = y + dy;
-          int nx = x + dx;
-          if (wraps) nx = (nx + W) % W;
-          if (nx < 0 || nx >= W || ny < 0 || ny >= H || tiles.of(ny) != tiles.of(y)) continue;
-          for (int c = 0; c < 3; ++c) sum[std::size_t(c)] += variance.pixel(nx, ny)[c];
-          ++n;
-        }
-      for (int c = 0; c < 3; ++c) out.pixel(x, y)[c] = sum[std::size_t(c)] / float(n);
-    }
-  });
-  return out;
-}
-
 // The bilinear taps around a continuous position (pixel centres at +0.5) of a neighbour that show
 // the centre pixel's surface, their weights summing to 1 (none: it shows another one there).
 struct Taps {
@@ -101,12 +77,95 @@ std::array<float, 3> read(const Image<float>& image, const Taps& taps) {
   return v;
 }
 
-// One pixel's running sums: each layer's colour, how many frames it took, its summed variance.
-struct Accumulated {
-  std::array<std::array<float, 3>, kLayers> color{};
-  std::array<int, kLayers> frames{};
-  std::array<float, kVarianced> variance{};
+// A neighbour's layers read where frame t's pixels are seen in it (found: a matching surface
+// there): colour, luminance and variance per layer.
+struct Reprojected {
+  std::array<Image<float>, kLayers> color;
+  std::array<std::vector<float>, kLayers> luminance, variance;
+  std::vector<char> found;
 };
+
+// The luminance and variance of each layer of frame t's own pixels, in Reprojected's form.
+Reprojected own_layers(const ColorLayers& layers) {
+  const std::size_t n = layers.direct.pixel_count();
+  Reprojected own;
+  own.found.assign(n, 1);
+  for (int l = 0; l < kLayers; ++l) {
+    own.color[l] = layers.*kLayer[l];
+    own.luminance[l].resize(n), own.variance[l].assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      own.luminance[l][i] = luminance(&own.color[l].data[3 * i]);
+      if (l < kVarianced) own.variance[l][i] = layers.variance.data[3 * i + l];
+    }
+  }
+  return own;
+}
+
+Reprojected reprojected(const TemporalNeighbour& n, const ColorLayers& centre,
+                        ImageView<const std::uint16_t> instance, const TemporalOptions& options,
+                        Tiles tiles) {
+  const int W = centre.direct.width, H = centre.direct.height;
+  const std::size_t count = centre.direct.pixel_count();
+  Reprojected r;
+  r.found.assign(count, 0);
+  for (int l = 0; l < kLayers; ++l)
+    r.color[l] = Image<float>(W, H, 3), r.luminance[l].assign(count, 0),
+    r.variance[l].assign(count, 0);
+  tbb::parallel_for(0, H, [&](int y) {
+    for (int x = 0; x < W; ++x) {
+      const std::size_t i = std::size_t(y) * W + x;
+      if (!n.valid.data[i]) continue;
+      const Surface surface{instance.data[i], has_surface(centre, i), tiles.of(y)};
+      const Taps taps =
+          matching_taps(n, x + 0.5 + n.flow.data[2 * i], y + 0.5 + n.flow.data[2 * i + 1], surface,
+                        options.wraps, tiles);
+      if (taps.count == 0) continue;
+      r.found[i] = 1;
+      const std::array<float, 3> variance = read(n.layers->variance, taps);
+      for (int l = 0; l < kLayers; ++l) {
+        const std::array<float, 3> color = read(n.layers->*kLayer[l], taps);
+        std::copy(color.begin(), color.end(), &r.color[l].data[3 * i]);
+        r.luminance[l][i] = luminance(color.data());
+        if (l < kVarianced) r.variance[l][i] = variance[std::size_t(l)];
+      }
+    }
+  });
+  return r;
+}
+
+// Whether `a` and `b` (luminance means with these variances) differ by no more than their noise
+// explains; without a variance (the 'other' layer), by no more than the relative tolerance.
+bool agree(double a, double b, double variance, const TemporalOptions& options) {
+  const double tolerance = variance > 0 ? options.sigmas * std::sqrt(variance)
+                                        : options.relative_tolerance * std::max(a, b);
+  return std::abs(a - b) <= tolerance;
+}
+
+// Whether a neighbour's layer l agrees with the centre's at pixel (x, y): the pixels themselves
+// (their variances the 3 x 3 means around them, a steadier estimate), and the means over the 3 x 3
+// pixels where the neighbour was found (a shading change too small to see in one noisy pixel shows
+// in nine).
+bool agrees(const Reprojected& own, const Reprojected& their, int l, int x, int y, int W, int H,
+            const TemporalOptions& options, Tiles tiles) {
+  double mine = 0, theirs = 0, variance = 0, spread = 0;
+  int found = 0, around = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int ny = y + dy;
+      int nx = x + dx;
+      if (options.wraps) nx = (nx + W) % W;
+      if (nx < 0 || nx >= W || ny < 0 || ny >= H || tiles.of(ny) != tiles.of(y)) continue;
+      const std::size_t q = std::size_t(ny) * W + nx;
+      spread += own.variance[l][q], ++around;
+      if (!their.found[q]) continue;
+      mine += own.luminance[l][q], theirs += their.luminance[l][q];
+      variance += own.variance[l][q] + their.variance[l][q], ++found;
+    }
+  const std::size_t i = std::size_t(y) * W + x;
+  const double pixel_variance = spread / around + their.variance[l][i];
+  return agree(own.luminance[l][i], their.luminance[l][i], pixel_variance, options) &&
+         agree(mine / found, theirs / found, variance / (double(found) * found), options);
+}
 
 }  // namespace
 
@@ -115,52 +174,28 @@ ColorLayers temporal_layers(const ColorLayers& centre, ImageView<const std::uint
                             const TemporalOptions& options) {
   const int W = centre.direct.width, H = centre.direct.height;
   const Tiles tiles{options.tile_height > 0 ? options.tile_height : H};
-  const Image<float> centre_spread = smoothed_variance(centre.variance, options.wraps, tiles);
-  std::vector<Image<float>> spread;
+  const Reprojected own = own_layers(centre);
+  std::vector<Reprojected> theirs;
   for (const TemporalNeighbour& n : neighbours)
-    spread.push_back(smoothed_variance(n.layers->variance, options.wraps, tiles));
+    theirs.push_back(reprojected(n, centre, instance, options, tiles));
   ColorLayers out = centre;
   tbb::parallel_for(0, H, [&](int y) {
     for (int x = 0; x < W; ++x) {
       const std::size_t i = std::size_t(y) * W + x;
-      Accumulated sum;
       for (int l = 0; l < kLayers; ++l) {
-        for (int c = 0; c < 3; ++c) sum.color[l][c] = (centre.*kLayer[l]).data[3 * i + c];
-        sum.frames[l] = 1;
-      }
-      for (int l = 0; l < kVarianced; ++l) sum.variance[l] = centre.variance.data[3 * i + l];
-      const Surface surface{instance.data[i], has_surface(centre, i), tiles.of(y)};
-      for (std::size_t k = 0; k < neighbours.size(); ++k) {
-        const TemporalNeighbour& n = neighbours[k];
-        if (!n.valid.data[i]) continue;
-        const Taps taps =
-            matching_taps(n, x + 0.5 + n.flow.data[2 * i], y + 0.5 + n.flow.data[2 * i + 1],
-                          surface, options.wraps, tiles);
-        if (taps.count == 0) continue;
-        const std::array<float, 3> their_spread = read(spread[k], taps);
-        const std::array<float, 3> their_variance = read(n.layers->variance, taps);
-        for (int l = 0; l < kLayers; ++l) {
-          const std::array<float, 3> theirs = read(n.layers->*kLayer[l], taps);
-          const float mine = luminance(&(centre.*kLayer[l]).data[3 * i]);
-          const float other = luminance(theirs.data());
-          const float noise =
-              l < kVarianced
-                  ? std::sqrt(centre_spread.data[3 * i + l] + their_spread[std::size_t(l)])
-                  : 0.0f;
-          const float tolerance =
-              options.sigmas * noise + options.relative_tolerance * std::max(mine, other);
-          if (!(std::abs(other - mine) <= tolerance)) continue;
-          for (int c = 0; c < 3; ++c) sum.color[l][c] += theirs[std::size_t(c)];
-          ++sum.frames[l];
-          if (l < kVarianced) sum.variance[l] += their_variance[std::size_t(l)];
+        std::array<double, 3> color{};
+        double variance = own.variance[l][i];
+        int frames = 1;
+        for (int c = 0; c < 3; ++c) color[std::size_t(c)] = own.color[l].data[3 * i + c];
+        for (const Reprojected& their : theirs) {
+          if (!their.found[i] || !agrees(own, their, l, x, y, W, H, options, tiles)) continue;
+          for (int c = 0; c < 3; ++c) color[std::size_t(c)] += their.color[l].data[3 * i + c];
+          variance += their.variance[l][i], ++frames;
         }
-      }
-      for (int l = 0; l < kLayers; ++l)
         for (int c = 0; c < 3; ++c)
-          (out.*kLayer[l]).data[3 * i + c] = sum.color[l][c] / float(sum.frames[l]);
-      for (int l = 0; l < kVarianced; ++l)
-        out.variance.data[3 * i + l] =
-            sum.variance[l] / float(sum.frames[l]) / float(sum.frames[l]);
+          (out.*kLayer[l]).data[3 * i + c] = float(color[std::size_t(c)] / frames);
+        if (l < kVarianced) out.variance.data[3 * i + l] = float(variance / frames / frames);
+      }
     }
   });
   return out;

@@ -27,10 +27,11 @@ struct TemporalNeighbour {
 
 struct TemporalOptions {
   // A neighbour's layer is dropped where its luminance differs from the centre's by more than
-  // this many standard deviations of the difference (the two variances, each the 3 x 3 mean around
-  // its pixel), plus relative_tolerance of the larger of the two (the 'other' layer, which carries
-  // no variance, is judged by that alone).
-  float sigmas = 3;
+  // this many standard deviations of the difference, at the pixel (the variances there the 3 x 3
+  // means around it) or in the mean of the 3 x 3 pixels around it (where a change too small to
+  // see in one noisy pixel shows); where a layer carries no variance (the 'other' layer: sky,
+  // emission, fog), by more than relative_tolerance of the larger.
+  float sigmas = 2;
   float relative_tolerance = 0.05f;
   bool wraps = false;   // the image wraps around horizontally (the ERP)
   int tile_height = 0;  // > 0: stacked tiles of this height (the cube's faces); taps stay in theirs
