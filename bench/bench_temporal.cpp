@@ -11,8 +11,16 @@
 // - the relative error of non-sky linear colour (sRGB decoded; night and dusk against the day's);
 // - the seconds per frame of the whole sequence (colour, ground truth, files), as a ratio to
 //   temporal 0's.
+// First, the peak resident memory of a sequence of the default release (the flowscape rig: ERP and
+// six faces, the default outputs) at `memory height` (its faces half as wide), each frame alone and
+// with each window, each in a process of its own (target: at most 4 GB at 512 x 1024).
 // Usage: bench_temporal [ERP height = 64] [reference spp = 512] [frames = 6]
 //                       [windows = 1,2,3] [conditions = all: sunny,cloud,fog,rain,dawn,dusk,night]
+//                       [memory height = 512; 0: none]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -138,6 +146,29 @@ Figures measure(const ReleaseConfig& config, const SequencePlan& plan, const Ref
   return f;
 }
 
+// Writes a sequence of the default release in a child process and prints its peak resident set.
+void print_peak_memory(int height, int window, const fs::path& scratch) {
+  ReleaseConfig config;
+  config.maps = 1, config.sequences_per_map = 1, config.frames = 2 * window + 2;
+  config.height = height, config.face_size = height / 2, config.temporal = window;
+  const fs::path out = scratch / ("memory" + std::to_string(window));
+  fs::remove_all(out);
+  std::fflush(stdout);
+  const pid_t child = fork();
+  if (child == 0) {
+    write_sequence(config, plan_sequences(config).front(), out, {[] {}, [] {}});
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("  %-12s %d frames: %.2f GB\n",
+                window == 0 ? "each frame" : ("temporal " + std::to_string(window)).c_str(),
+                config.frames, double(usage.ru_maxrss) / (1024.0 * 1024.0));
+    std::fflush(stdout);
+    std::_Exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -149,6 +180,14 @@ int main(int argc, char** argv) {
   const std::vector<std::string> conditions =
       split(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
   const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
+  // first: the children are forked before this process starts TBB's threads
+  const int memory_height = argc > 6 ? std::atoi(argv[6]) : 512;
+  if (memory_height > 0) {
+    std::printf("peak resident memory, default release, %d x %d ERP + 6 x %d^2 faces:\n",
+                memory_height, 2 * memory_height, memory_height / 2);
+    print_peak_memory(memory_height, 0, scratch);
+    for (int window : windows) print_peak_memory(memory_height, window, scratch);
+  }
   std::printf("bench_temporal: map 0, %d frames, %d x %d ERP (no cube), reference %d spp raw\n",
               frames, height, 2 * height, reference_spp);
   std::printf("  %-8s %-12s %8s %8s %8s %10s %9s %8s\n", "", "pipeline", "PSNR dB", "PE", "PE/conv",
