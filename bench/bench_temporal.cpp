@@ -16,7 +16,8 @@
 // with each window, each in a process of its own (target: at most 4 GB at 512 x 1024).
 // Usage: bench_temporal [ERP height = 64] [reference spp = 512] [frames = 6]
 //                       [windows = 1,2,3] [conditions = all: sunny,cloud,fog,rain,dawn,dusk,night]
-//                       [memory height = 512; 0: none]
+//                       [memory height = 512; 0: none] [figure.png: the middle frame of each
+//                       condition, converged, frame by frame and with the widest window]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -28,6 +29,7 @@
 #include <sstream>
 
 #include "flowscape/core/profile.h"
+#include "flowscape/formats/contact_sheet.h"
 #include "flowscape/formats/image_io.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/layout/layout.h"
@@ -103,7 +105,8 @@ double relative_error(const Image<float>& image, const Image<float>& reference,
 
 struct Figures {
   double psnr = 0, pe = 0, relative = 0, seconds = 0;
-  std::string phases;  // seconds per frame by stage
+  std::string phases;                         // seconds per frame by stage
+  std::vector<Image<std::uint8_t>> frames{};  // as written
 };
 
 std::string phase_line(int frames) {
@@ -127,7 +130,7 @@ Figures measure(const ReleaseConfig& config, const SequencePlan& plan, const Ref
   f.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() /
               config.frames;
   f.phases = phase_line(config.frames);
-  std::vector<Image<std::uint8_t>> frames;
+  std::vector<Image<std::uint8_t>>& frames = f.frames;
   for (int t = 0; t < config.frames; ++t)
     frames.push_back(read_image<std::uint8_t>(sequence_dir(out, plan.name) /
                                               frame_file(output_kind("color"), View(), t)));
@@ -169,6 +172,11 @@ void print_peak_memory(int height, int window, const fs::path& scratch) {
   waitpid(child, &status, 0);
 }
 
+Image<std::uint8_t> labelled(Image<std::uint8_t> tile, const std::string& text) {
+  label_tile(tile, text);
+  return tile;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -180,6 +188,8 @@ int main(int argc, char** argv) {
   const std::vector<std::string> conditions =
       split(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
   const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
+  const std::string figure = argc > 7 ? argv[7] : "";
+  std::vector<std::vector<Image<std::uint8_t>>> figure_rows;
   // first: the children are forked before this process starts TBB's threads
   const int memory_height = argc > 6 ? std::atoi(argv[6]) : 512;
   if (memory_height > 0) {
@@ -216,9 +226,15 @@ int main(int argc, char** argv) {
                 "each frame", alone.psnr, alone.pe, alone.pe / converged_pe, alone.relative,
                 alone.seconds, 1.0);
     std::printf("      s/frame by stage: %s\n", alone.phases.c_str());
+    const std::size_t middle = std::size_t(frames / 2);
+    figure_rows.push_back({labelled(converged[middle], condition + ", converged"),
+                           labelled(alone.frames[middle], "each frame")});
     for (int window : windows) {
       config.temporal = window;
       const Figures f = measure(config, plan, ref, scratch / ("temporal" + std::to_string(window)));
+      if (window == windows.back())
+        figure_rows.back().push_back(
+            labelled(f.frames[middle], "temporal " + std::to_string(window)));
       std::printf("  %-8s temporal %-3d %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
                   window, f.psnr, f.pe, f.pe / converged_pe, f.relative, f.seconds,
                   f.seconds / alone.seconds);
@@ -226,5 +242,6 @@ int main(int argc, char** argv) {
     }
     std::fflush(stdout);
   }
+  if (!figure.empty()) write_image(figure, contact_sheet(figure_rows));
   fs::remove_all(scratch);
 }

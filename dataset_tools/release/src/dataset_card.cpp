@@ -14,6 +14,7 @@
 #include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/manifest.h"
 #include "flowscape/release/scenario.h"
+#include "flowscape/release/sequence.h"
 #include "flowscape/release/statistics.h"
 #include "flowscape/renderer/denoiser.h"
 #include "flowscape/scenes/city.h"
@@ -101,7 +102,13 @@ void sizes_section(std::ostringstream& md, const ReleaseConfig& c, const fs::pat
                    std::to_string(int(std::lround(100 * c.adaptive))) +
                    " % of the pixels where the denoised halves disagree most"
              : std::string())
-     << "), " << make_denoiser(c.denoise, c.denoise_model)->description()
+     << (c.temporal > 0
+             ? "; each frame's samples averaged with those of the " + std::to_string(c.temporal) +
+                   (c.temporal == 1 ? " frame" : " frames") +
+                   " before and after it along the exact flow where their shading agrees "
+                   "(temporal reconstruction)"
+             : std::string())
+     << "), " << release_denoiser(color_section(c))->description()
      << "\n\n## Output kinds\n\nEach kind is a folder of every view (the ERP"
      << (c.cube ? " and each face" : "")
      << "); bytes per frame are the mean over the release, all views together. The six kinds "

@@ -20,7 +20,7 @@ bool has_surface(const ColorLayers& layers, std::size_t i) {
   return n[0] != 0 || n[1] != 0 || n[2] != 0;
 }
 
-// Where the stacked tiles are: a pixel's tile, and whether a row lies in it.
+// The stacked tiles (the cube's faces) a row belongs to.
 struct Tiles {
   int height;  // the image's when not stacked
   int of(int y) const { return y / height; }
