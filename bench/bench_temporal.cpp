@@ -1,8 +1,8 @@
 // Temporal reconstruction (ReleaseConfig::temporal, renderer/temporal.h) against each frame alone
 // (today's default, temporal 0) in the same run, per weather and time of day: a sequence of map 0
-// written by the release writer with the ERP rendered directly (--no-cube), each variant's
-// 8-bit colour against a converged reference of the same frames (raw, every sample gathering
-// indirect light):
+// written by the release writer with the ERP rendered directly (--no-cube; or stitched from the
+// cube faces), each variant's 8-bit colour against a converged reference of the same frames (raw,
+// every sample gathering indirect light):
 // - non-sky PSNR (dB) of each frame, averaged over the frames;
 // - PE between consecutive frames: |I(t) - I(t+1) warped back by the exact flow|, 8-bit levels
 //   averaged over the channels, over the non-sky pixels visible in both (the paper's Table II
@@ -18,6 +18,8 @@
 //                       [windows = 1,2,3] [conditions = all: sunny,cloud,fog,rain,dawn,dusk,night]
 //                       [memory height = 512; 0: none] [figure.png: the middle frame of each
 //                       condition, converged, frame by frame and with the widest window]
+//                       [cube: the ERP stitched from six faces of half its height, as the
+//                       default release makes it, against the converged faces stitched alike]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -36,6 +38,7 @@
 #include "flowscape/quality/photoconsistency.h"
 #include "flowscape/release/sequence.h"
 #include "flowscape/release/writer.h"
+#include "flowscape/stitcher/stitch.h"
 #include "frame_quality.h"
 
 using namespace flowscape;
@@ -60,12 +63,17 @@ Reference reference(const ReleaseConfig& config, const SequencePlan& plan, int s
   const Sequence sequence = make_sequence(sequence_spec(config, plan));
   Renderer renderer(sequence.city.scene);
   const Projection erp = Projection::equirectangular(config.height);
+  const CubeToErp faces_to_erp = make_cube_to_erp(config.face_size, config.height);
   Reference r;
   for (int f = 0; f < config.frames; ++f) {
     const FramePair pair = sequence.frame_pair(f);
+    const RenderOptions options{spp, config.max_bounces, sequence.color_seed(f) + 1};
     r.truth.push_back(renderer.ground_truth(erp, pair));
     r.color.push_back(
-        renderer.color(erp, pair, {spp, config.max_bounces, sequence.color_seed(f) + 1}));
+        config.cube ? resample_bilinear(
+                          faces_to_erp.sampling,
+                          raw_color(cube_color_layers(renderer, config.face_size, pair, options)))
+                    : renderer.color(erp, pair, options));
   }
   return r;
 }
@@ -189,6 +197,7 @@ int main(int argc, char** argv) {
       split(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
   const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
   const std::string figure = argc > 7 ? argv[7] : "";
+  const bool cube = argc > 8 && std::string(argv[8]) == "cube";
   std::vector<std::vector<Image<std::uint8_t>>> figure_rows;
   // first: the children are forked before this process starts TBB's threads
   const int memory_height = argc > 6 ? std::atoi(argv[6]) : 512;
@@ -198,14 +207,16 @@ int main(int argc, char** argv) {
     print_peak_memory(memory_height, 0, scratch);
     for (int window : windows) print_peak_memory(memory_height, window, scratch);
   }
-  std::printf("bench_temporal: map 0, %d frames, %d x %d ERP (no cube), reference %d spp raw\n",
-              frames, height, 2 * height, reference_spp);
+  std::printf("bench_temporal: map 0, %d frames, %d x %d ERP (%s), reference %d spp raw\n", frames,
+              height, 2 * height, cube ? "stitched from the cube faces" : "rendered directly",
+              reference_spp);
   std::printf("  %-8s %-12s %8s %8s %8s %10s %9s %8s\n", "", "pipeline", "PSNR dB", "PE", "PE/conv",
               "rel. err", "s/frame", "time x");
   for (const std::string& condition : conditions) {
     ReleaseConfig config;
     config.maps = 1, config.sequences_per_map = 1, config.frames = frames;
-    config.height = height, config.cube = false, config.outputs = {};
+    config.height = height, config.face_size = height / 2, config.outputs = {};
+    config.cube = cube;
     const bool time_of_day = condition == "dawn" || condition == "dusk" || condition == "night";
     config.weathers = {time_of_day ? "sunny" : condition};
     config.times_of_day = {time_of_day ? condition : "day"};
