@@ -30,24 +30,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Relative MSE of linear colour over the non-sky pixels, sum (c - r)^2 / sum r^2, comparable
-// across exposures and times of day; with `clip`, of the colour a camera records at the
-// sequence's exposure (clipped to [0, 1]), else of the whole linear range, where the few
-// pixels at the edges of lamps tens of times brighter than white dominate.
-double relative_mse(const Image<float>& image, const Image<float>& reference,
-                    const GroundTruth& truth, bool clip) {
-  double error = 0, energy = 0;
-  const auto value = [clip](float v) { return clip ? std::clamp(double(v), 0.0, 1.0) : double(v); };
-  for (std::size_t i = 0; i < truth.semantic.data.size(); ++i) {
-    if (truth.semantic.data[i] == std::uint8_t(SemanticClass::Sky)) continue;
-    for (int c = 0; c < 3; ++c) {
-      const double r = value(reference.data[3 * i + c]), d = value(image.data[3 * i + c]) - r;
-      error += d * d, energy += r * r;
-    }
-  }
-  return error / std::max(energy, 1e-30);
-}
-
 struct Variant {
   std::string name;
   ReleaseConfig config;

@@ -8,7 +8,8 @@
 //   averaged over the channels, over the non-sky pixels visible in both (the paper's Table II
 //   measure; photoconsistency.h's WPE), and its ratio to the converged frames' PE (target: within
 //   +-10 %);
-// - the relative error of non-sky linear colour (sRGB decoded; night and dusk against the day's);
+// - the relative error of non-sky linear colour (sRGB decoded, frame_quality.h's relative_mse;
+//   night and dusk against the day's);
 // - the seconds per frame of the whole sequence (colour, ground truth, files), as a ratio to
 //   temporal 0's.
 // First, the peak resident memory of a sequence of the default release (the flowscape rig: ERP and
@@ -96,21 +97,6 @@ Image<float> linear(const Image<std::uint8_t>& srgb) {
   return out;
 }
 
-// Relative error of non-sky linear colour, sum (c - r)^2 / sum r^2 (r clipped as a camera would).
-double relative_error(const Image<float>& image, const Image<float>& reference,
-                      const GroundTruth& truth) {
-  double error = 0, energy = 0;
-  for (std::size_t i = 0; i < truth.semantic.data.size(); ++i) {
-    if (truth.semantic.data[i] == std::uint8_t(SemanticClass::Sky)) continue;
-    for (int c = 0; c < 3; ++c) {
-      const double r = std::clamp(double(reference.data[3 * i + c]), 0.0, 1.0);
-      const double d = image.data[3 * i + c] - r;
-      error += d * d, energy += r * r;
-    }
-  }
-  return error / std::max(energy, 1e-30);
-}
-
 struct Figures {
   double psnr = 0, pe = 0, relative = 0, seconds = 0;
   std::string phases;                         // seconds per frame by stage
@@ -143,12 +129,10 @@ Figures measure(const ReleaseConfig& config, const SequencePlan& plan, const Ref
     frames.push_back(read_image<std::uint8_t>(sequence_dir(out, plan.name) /
                                               frame_file(output_kind("color"), View(), t)));
   for (int t = 0; t < config.frames; ++t) {
-    f.psnr +=
-        psnr(linear(frames[std::size_t(t)]), ref.color[std::size_t(t)], ref.truth[std::size_t(t)]) /
-        config.frames;
-    f.relative += relative_error(linear(frames[std::size_t(t)]), ref.color[std::size_t(t)],
-                                 ref.truth[std::size_t(t)]) /
-                  config.frames;
+    const std::size_t k = std::size_t(t);
+    const Image<float> decoded = linear(frames[k]);
+    f.psnr += psnr(decoded, ref.color[k], ref.truth[k]) / config.frames;
+    f.relative += relative_mse(decoded, ref.color[k], ref.truth[k], true) / config.frames;
     if (t + 1 < config.frames)
       f.pe += consecutive_pe(frames[std::size_t(t)], frames[std::size_t(t) + 1],
                              ref.truth[std::size_t(t)]) /

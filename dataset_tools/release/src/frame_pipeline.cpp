@@ -144,21 +144,21 @@ TruthRequest windowed_request(const FramePipeline& p, const RigCamera* camera, i
   return camera ? at_camera(plan.request, *camera) : plan.request;
 }
 
-// Where frame `frame`'s pixels are seen in frame `frame + step` (a windowed_request's truth).
+// Where frame `frame`'s pixels are seen in frame `frame + step` of its window, in a
+// windowed_request's truth: the next frame's flow, a layout step's, or a window-only target's.
 struct FlowView {
   ImageView<const float> flow;
   ImageView<const std::uint8_t> valid;
 };
-FlowView flow_to(const FramePipeline& p, const GroundTruth& truth, int frame, int step) {
+FlowView flow_to(const GroundTruth& truth, const TruthPlan& plan,
+                 const std::vector<int>& window_only, int step) {
   if (step == 1) return {truth.flow.view(), truth.valid.view()};
-  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
-  const std::vector<int> window = window_only_steps(p, plan, frame);
   const auto in_plan = std::find(plan.steps.begin(), plan.steps.end(), step);
-  const std::size_t k =
-      in_plan != plan.steps.end()
-          ? std::size_t(in_plan - plan.steps.begin())
-          : plan.steps.size() +
-                std::size_t(std::find(window.begin(), window.end(), step) - window.begin());
+  const std::size_t k = in_plan != plan.steps.end()
+                            ? std::size_t(in_plan - plan.steps.begin())
+                            : plan.steps.size() + std::size_t(std::find(window_only.begin(),
+                                                                        window_only.end(), step) -
+                                                              window_only.begin());
   return {truth.more[k].flow.view(), truth.more[k].valid.view()};
 }
 
@@ -196,11 +196,13 @@ ColorLayers reconstructed(const FramePipeline& p, int view, int frame, const Gro
     return p.history->frame(view, f, [&] { return trace(f); });
   };
   const LayerHistory::Frame& centre = traced(frame);
+  const TruthPlan plan = truth_plan(p.sequence, p.layout, frame, p.frames);
+  const std::vector<int> window_only = window_only_steps(p, plan, frame);
   std::vector<TemporalNeighbour> neighbours;
   for (int f = first; f <= last; ++f) {
     if (f == frame) continue;
     const LayerHistory::Frame& their = traced(f);
-    const FlowView to = flow_to(p, truth, frame, f - frame);
+    const FlowView to = flow_to(truth, plan, window_only, f - frame);
     neighbours.push_back({&their.layers, their.instance.view(), to.flow, to.valid});
   }
   const ScopedPhase phase("temporal reconstruction");

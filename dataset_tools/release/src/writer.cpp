@@ -201,13 +201,15 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     statistics[std::size_t(f)] = write_frame(dir, layout, f, config.frames, images);
     progress.frame_done();
   };
+  const ColorSection color = color_section(config);
+  const FinalPassSection final_pass = final_pass_section(config);
   LayerHistory history;  // temporal reconstruction's frames
   for (int f = 0; f < config.frames; ++f) {
     history.drop_before(f - config.temporal);
     if (!std::binary_search(frames_to_render.begin(), frames_to_render.end(), f)) {
       if (final)
         exposures[std::size_t(f)] = exposure = exposure_after(
-            final_pass_section(config), sequence, exposure,
+            final_pass, sequence, exposure,
             read_image<std::uint8_t>(dir / frame_file(output_kind("color"), view, f)).view(),
             metering, f);
       continue;
@@ -221,9 +223,8 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
     FrameImages images = [&] {
       try {
         return render_frame(
-            {color_section(config), final_pass_section(config), class_table(config.classes),
-             config.frames, layout, rig, sequence, *renderer, faces ? &map : nullptr,
-             config.temporal > 0 ? &history : nullptr},
+            {color, final_pass, class_table(config.classes), config.frames, layout, rig, sequence,
+             *renderer, faces ? &map : nullptr, config.temporal > 0 ? &history : nullptr},
             f, frame_exposure);
       } catch (const RayError& e) {  // the ERP's, or a face's or rig camera's already named
         throw std::runtime_error(plan.name + ", frame " + std::to_string(f) + ", " +
@@ -245,7 +246,7 @@ void write_sequence(const ReleaseConfig& config, const SequencePlan& plan, const
   meta.boxes = boxes_json(dir, layout, config.frames);
   meta.statistics = sequence_statistics_json(view, statistics, meta.poses, meta.fps,
                                              class_table(config.classes).size());
-  if (final) meta.final = final_json(final_pass_section(config), sequence, exposures);
+  if (final) meta.final = final_json(final_pass, sequence, exposures);
   write_meta(dir, meta);
 }
 

@@ -80,21 +80,21 @@ std::array<float, 3> read(const Image<float>& image, const Taps& taps) {
 // A neighbour's layers read where frame t's pixels are seen in it (found: a matching surface
 // there): colour, luminance and variance per layer.
 struct Reprojected {
-  std::array<Image<float>, kLayers> color;
+  std::array<Image<float>, kLayers> color;  // empty for frame t's own (own_layers)
   std::array<std::vector<float>, kLayers> luminance, variance;
   std::vector<char> found;
 };
 
-// The luminance and variance of each layer of frame t's own pixels, in Reprojected's form.
+// The luminance and variance of each layer of frame t's own pixels, in Reprojected's form (their
+// colour stays in `layers`).
 Reprojected own_layers(const ColorLayers& layers) {
   const std::size_t n = layers.direct.pixel_count();
   Reprojected own;
   own.found.assign(n, 1);
   for (int l = 0; l < kLayers; ++l) {
-    own.color[l] = layers.*kLayer[l];
     own.luminance[l].resize(n), own.variance[l].assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      own.luminance[l][i] = luminance(&own.color[l].data[3 * i]);
+      own.luminance[l][i] = luminance(&(layers.*kLayer[l]).data[3 * i]);
       if (l < kVarianced) own.variance[l][i] = layers.variance.data[3 * i + l];
     }
   }
@@ -142,9 +142,9 @@ bool agree(double a, double b, double variance, const TemporalOptions& options) 
 }
 
 // Whether a neighbour's layer l agrees with the centre's at pixel (x, y): the pixels themselves
-// (their variances the 3 x 3 means around them, a steadier estimate), and the means over the 3 x 3
-// pixels where the neighbour was found (a shading change too small to see in one noisy pixel shows
-// in nine).
+// (the centre's variance the 3 x 3 mean around it, a steadier estimate, plus the neighbour's read
+// at its taps), and the means over the 3 x 3 pixels where the neighbour was found (a shading change
+// too small to see in one noisy pixel shows in nine).
 bool agrees(const Reprojected& own, const Reprojected& their, int l, int x, int y, int W, int H,
             const TemporalOptions& options, Tiles tiles) {
   double mine = 0, theirs = 0, variance = 0, spread = 0;
@@ -186,7 +186,7 @@ ColorLayers temporal_layers(const ColorLayers& centre, ImageView<const std::uint
         std::array<double, 3> color{};
         double variance = own.variance[l][i];
         int frames = 1;
-        for (int c = 0; c < 3; ++c) color[std::size_t(c)] = own.color[l].data[3 * i + c];
+        for (int c = 0; c < 3; ++c) color[std::size_t(c)] = (centre.*kLayer[l]).data[3 * i + c];
         for (const Reprojected& their : theirs) {
           if (!their.found[i] || !agrees(own, their, l, x, y, W, H, options, tiles)) continue;
           for (int c = 0; c < 3; ++c) color[std::size_t(c)] += their.color[l].data[3 * i + c];

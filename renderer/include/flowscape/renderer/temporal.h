@@ -27,10 +27,11 @@ struct TemporalNeighbour {
 
 struct TemporalOptions {
   // A neighbour's layer is dropped where its luminance differs from the centre's by more than
-  // this many standard deviations of the difference, at the pixel (the variances there the 3 x 3
-  // means around it) or in the mean of the 3 x 3 pixels around it (where a change too small to
-  // see in one noisy pixel shows); where a layer carries no variance (the 'other' layer: sky,
-  // emission, fog), by more than relative_tolerance of the larger.
+  // this many standard deviations of the difference, at the pixel (the centre's variance the
+  // 3 x 3 mean around it, the neighbour's as read there) or in the mean of the 3 x 3 pixels
+  // around it (where a change too small to see in one noisy pixel shows); where a layer carries
+  // no variance (the 'other' layer: sky, emission, fog), by more than relative_tolerance of the
+  // larger.
   float sigmas = 2;
   float relative_tolerance = 0.05f;
   bool wraps = false;   // the image wraps around horizontally (the ERP)
