@@ -12,12 +12,12 @@
 // kEarlierPath) against the new one (writing a frame while the next renders, the renderer's
 // levers on), with how many cores were busy, and where the new path's time went by phase; then
 // each renderer lever on its own against 0.10's and 0.11's renderer (a TracingBaseline switches it
-// back) and 0.12's final pass (4 shutter steps, not the clean frame in the
-// middle) on the first frame of each sequence of the fixed sample below,
-// alternating, median of max(runs, 1), and whether any image changed.
+// back) on the first frame of each sequence of the fixed sample below, alternating, median of
+// max(runs, 1), and whether any image changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
 // time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
-// Usage: bench_release [frames = 4] [threads = 2] [runs = 0]
+// Usage: bench_release [frames = 4] [threads = 2] [runs = 0] [final]
+// ("final": only the clean release against the one with the final pass, and its phases)
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -204,22 +204,20 @@ Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
   return out;
 }
 
-// The final pass's cube over the frame's shutter: 0.12's 4 steps, or the clean cube (rendered
-// first, untimed) as the middle third and 2 outer thirds.
-Rendered final_cube(const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer,
-                    bool clean_centre) {
-  const RenderOptions options = sequence.color_options(color_section(config), 0);
-  const CubeFrame clean = render_cube(renderer, config.face_size, sequence.frame_pair(0), &options);
+// The six faces' colour over the frame's shutter, each sample at its own time (the final pass's
+// path tracing, without its depth guide).
+Rendered faces_over_shutter(Renderer& renderer, int face_size, const Sequence& sequence,
+                            const Shutter& shutter, const RenderOptions& options) {
   Rendered out;
   const auto start = std::chrono::steady_clock::now();
-  out.colour.push_back(shutter_cube(
-                           renderer, config.face_size,
-                           frame_shutter(final_pass_section(config), sequence, 0),
-                           [&](double t) { return sequence.city.rig(t); }, options, true,
-                           clean_centre ? &clean : nullptr)
-                           .color);
+  for (Face face : kFaces) {
+    RenderStats stats;
+    out.colour.push_back(renderer.color_layers(
+        Projection::cube_face(face, face_size), shutter,
+        [&](double t) { return sequence.city.rig(t); }, {}, options, &stats));
+    out.rays += stats.rays;
+  }
   out.seconds = seconds_since(start);
-  compare_colour(out);
   return out;
 }
 
@@ -244,8 +242,8 @@ Rendered frame_truth(Renderer& renderer, const ReleaseConfig& config, const Trut
   return out;
 }
 
-// A renderer lever: what it renders of a sequence's first frame the old way (flowscape 0.11's;
-// 0.12's for the final pass) and with the lever.
+// A renderer lever: what it renders of a sequence's first frame the old way (flowscape 0.11's)
+// and with the lever.
 struct Lever {
   const char* name;
   Rendered (*render)(const ReleaseConfig&, const Sequence&, Renderer&, bool with_lever);
@@ -264,10 +262,6 @@ constexpr Lever kLevers[] = {
            truth_plan(sequence, release_layout(config), 0, config.frames).request;
        return traced_as(renderer, {.single_rays = !with},
                         [&] { return frame_truth(renderer, config, request); });
-     }},
-    {"final pass: the clean frame as the shutter's middle",
-     [](const ReleaseConfig& config, const Sequence& sequence, Renderer& renderer, bool with) {
-       return final_cube(config, sequence, renderer, with);
      }}};
 
 // Each lever on its own against the old way, on the first frame of each sequence of the fixed
@@ -276,7 +270,7 @@ void print_render_levers(const ReleaseConfig& config, const std::vector<Sequence
                          int runs) {
   runs = std::max(1, runs);
   std::printf(
-      "  renderer levers, each against the way before it (0.11's renderer, 0.12's final pass) on "
+      "  renderer levers, each against the way before it (0.11's renderer) on "
       "the first frames of the fixed sample, median of %d:\n",
       runs);
   for (const Lever& lever : kLevers) {
@@ -329,6 +323,42 @@ void print_fixed_sample(ReleaseConfig config, const fs::path& out, int full_fram
   print_profile(new_path, config.frames * int(sample.size()));
 }
 
+// The clean release against the same with the final pass, alternating, and where the latter's time
+// went by phase.
+void print_final_pass(const ReleaseConfig& config, const fs::path& out, int sequence_frames,
+                      int pair_runs, int full_frames) {
+  ReleaseConfig with_final = config;
+  with_final.outputs.push_back("final");
+  const auto [clean_measured, final_measured] =
+      alternating(config, with_final, out, sequence_frames, pair_runs);
+  const double clean = clean_measured.seconds_per_frame,
+               final_pass = final_measured.seconds_per_frame;
+  std::printf(
+      "  with the final pass                      %6.2f s/frame against the clean release's %.2f "
+      "(alternating, median of %d): it costs %+.1f %% (aim <= +60 %%), full release %5.2f h\n",
+      final_pass, clean, pair_runs, 100 * (final_pass / clean - 1),
+      final_pass * full_frames / 3600);
+  print_profile(final_measured, config.frames);
+  // the final pass's samples traced at the frame's time and over its shutter, alternating
+  const Sequence sequence = make_sequence(sequence_spec(config, plan_sequences(config).front()));
+  Renderer renderer(sequence.city.scene);
+  const RenderOptions options = shutter_options(sequence.color_options(color_section(config), 0));
+  const Shutter shutter = frame_shutter(final_pass_section(config), sequence, 0);
+  std::vector<double> times[2];
+  for (int run = 0; run < pair_runs; ++run) {
+    times[0].push_back(
+        faces_color(renderer, config.face_size, sequence.frame_pair(0), options).seconds);
+    times[1].push_back(
+        faces_over_shutter(renderer, config.face_size, sequence, shutter, options).seconds);
+  }
+  for (auto& t : times) std::sort(t.begin(), t.end());
+  const double still = times[0][times[0].size() / 2], moving = times[1][times[1].size() / 2];
+  std::printf(
+      "  the six faces at the final pass's %d spp: at the frame's time %.3f s, over the shutter "
+      "(a time per sample) %.3f s: %+.1f %% (median of %d)\n",
+      options.samples_per_pixel, still, moving, 100 * (moving / still - 1), pair_runs);
+}
+
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 4, threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int runs = argc > 3 ? std::atoi(argv[3]) : 0;
@@ -338,6 +368,11 @@ int main(int argc, char** argv) {
             sequence_frames = config.frames;
   config.maps = 1, config.sequences_per_map = 1, config.frames = frames;
   const fs::path out = fs::temp_directory_path() / "flowscape-bench-release";
+  const int pair_runs = std::max(runs, 3);
+  if (argc > 4 && std::strcmp(argv[4], "final") == 0) {
+    print_final_pass(config, out, sequence_frames, pair_runs, full_frames);
+    return 0;
+  }
   if (runs > 0) print_fixed_sample(config, out, full_frames, sequence_frames, threads, runs);
   std::printf("bench_release: %d frames of map00_seq00, %d threads, %d x %d ERP, %d^2 faces\n",
               frames, threads, config.height, 2 * config.height, config.face_size);
@@ -359,7 +394,6 @@ int main(int argc, char** argv) {
     ReleaseConfig sampled = config;
     print_render_levers(sampled, fixed_sample(sampled), runs);
   }
-  const int pair_runs = std::max(runs, 3);
   ReleaseConfig legacy = config;
   legacy.actors = "legacy";
   const auto [boxes_measured, actors_measured] =
@@ -368,12 +402,6 @@ int main(int argc, char** argv) {
   ReleaseConfig raw = config;
   raw.spp = raw.indirect_spp = 16, raw.denoise = "none";  // every sample indirect
   const double baseline = seconds_per_frame(raw, out, sequence_frames);
-  ReleaseConfig with_final = config;
-  with_final.outputs.push_back("final");
-  const auto [clean_measured, final_measured] =
-      alternating(config, with_final, out, sequence_frames, pair_runs);
-  const double clean = clean_measured.seconds_per_frame,
-               final_pass = final_measured.seconds_per_frame;
   const auto hours = [&](double seconds) { return seconds * full_frames / 3600; };
   std::printf("  default: %d spp (%d indirect), a-trous   %6.2f s/frame  full release %5.2f h\n",
               config.spp, indirect_samples(color_section(config)), release, hours(release));
@@ -385,10 +413,6 @@ int main(int argc, char** argv) {
       boxes, actors, pair_runs, 100 * (actors / boxes - 1));
   std::printf("  %d frames: %.2f h, %.2fx the baseline (target <= 2.7 h on 2 cores)\n", full_frames,
               hours(release), release / baseline);
-  std::printf(
-      "  with the final pass                      %6.2f s/frame against the clean release's %.2f "
-      "(alternating, median of %d): it costs %+.1f %% (aim <= +60 %%), full release %5.2f h\n",
-      final_pass, clean, pair_runs, 100 * (final_pass / clean - 1), hours(final_pass));
-  print_profile(final_measured, frames);
+  print_final_pass(config, out, sequence_frames, pair_runs, full_frames);
   return 0;
 }

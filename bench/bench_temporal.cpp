@@ -20,7 +20,10 @@
 //                       [memory height = 512; 0: none] [figure.png: the middle frame of each
 //                       condition, converged, frame by frame and with the widest window]
 //                       [cube: the ERP stitched from six faces of half its height, as the
-//                       default release makes it, against the converged faces stitched alike]
+//                       default release makes it, against the converged faces stitched alike;
+//                       "erp": rendered directly]
+//                       [samples per pixel = the release's 8; a list such as 4,8,16,32: each
+//                       pipeline at each, the curve of PSNR and PE against seconds per frame]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -182,6 +185,9 @@ int main(int argc, char** argv) {
   const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
   const std::string figure = argc > 7 ? argv[7] : "";
   const bool cube = argc > 8 && std::string(argv[8]) == "cube";
+  std::vector<int> sample_counts;
+  for (const std::string& spp : split(argc > 9 ? argv[9] : std::to_string(ReleaseConfig{}.spp)))
+    sample_counts.push_back(std::stoi(spp));
   std::vector<std::vector<Image<std::uint8_t>>> figure_rows;
   // first: the children are forked before this process starts TBB's threads
   const int memory_height = argc > 6 ? std::atoi(argv[6]) : 512;
@@ -215,27 +221,33 @@ int main(int argc, char** argv) {
                       (frames - 1);
     std::printf("  %-8s %-12s %8s %8.3f %8s\n", condition.c_str(), "converged", "", converged_pe,
                 "1.00");
-    config.temporal = 0;
-    const Figures alone = measure(config, plan, ref, scratch / "alone");
-    std::printf("  %-8s %-12s %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
-                "each frame", alone.psnr, alone.pe, alone.pe / converged_pe, alone.relative,
-                alone.seconds, 1.0);
-    std::printf("      s/frame by stage: %s\n", alone.phases.c_str());
     const std::size_t middle = std::size_t(frames / 2);
-    figure_rows.push_back({labelled(converged[middle], condition + ", converged"),
-                           labelled(alone.frames[middle], "each frame")});
-    for (int window : windows) {
-      config.temporal = window;
-      const Figures f = measure(config, plan, ref, scratch / ("temporal" + std::to_string(window)));
-      if (window == windows.back())
-        figure_rows.back().push_back(
-            labelled(f.frames[middle], "temporal " + std::to_string(window)));
-      std::printf("  %-8s temporal %-3d %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
-                  window, f.psnr, f.pe, f.pe / converged_pe, f.relative, f.seconds,
-                  f.seconds / alone.seconds);
-      std::printf("      s/frame by stage: %s\n", f.phases.c_str());
+    for (int spp : sample_counts) {
+      config.spp = spp;
+      const std::string at = sample_counts.size() > 1 ? " " + std::to_string(spp) : "";
+      config.temporal = 0;
+      const Figures alone = measure(config, plan, ref, scratch / "alone");
+      std::printf("  %-8s %-12s %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
+                  ("each frame" + at).c_str(), alone.psnr, alone.pe, alone.pe / converged_pe,
+                  alone.relative, alone.seconds, 1.0);
+      std::printf("      s/frame by stage: %s\n", alone.phases.c_str());
+      if (spp == sample_counts.front())
+        figure_rows.push_back({labelled(converged[middle], condition + ", converged"),
+                               labelled(alone.frames[middle], "each frame")});
+      for (int window : windows) {
+        config.temporal = window;
+        const Figures f =
+            measure(config, plan, ref, scratch / ("temporal" + std::to_string(window)));
+        if (window == windows.back() && spp == sample_counts.front())
+          figure_rows.back().push_back(
+              labelled(f.frames[middle], "temporal " + std::to_string(window)));
+        std::printf("  %-8s %-12s %8.2f %8.3f %8.2f %10.5f %9.2f %8.2f\n", condition.c_str(),
+                    ("temporal " + std::to_string(window) + at).c_str(), f.psnr, f.pe,
+                    f.pe / converged_pe, f.relative, f.seconds, f.seconds / alone.seconds);
+        std::printf("      s/frame by stage: %s\n", f.phases.c_str());
+      }
+      std::fflush(stdout);
     }
-    std::fflush(stdout);
   }
   if (!figure.empty()) write_image(figure, contact_sheet(figure_rows));
   fs::remove_all(scratch);

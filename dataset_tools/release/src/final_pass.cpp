@@ -47,29 +47,30 @@ Exposure exposure_after(const FinalPassSection& final_pass, const Sequence& sequ
 
 Image<float> final_color(const ColorSection& color_settings, const FinalPassSection& final_pass,
                          const Sequence& sequence, Renderer& renderer, const Projection& camera,
-                         const CameraTrack& track, int frame, const Readout& readout,
-                         const ColorLayers& clean, const Image<float>& clean_depth) {
-  const RenderOptions options = sequence.color_options(color_settings, frame);
+                         const CameraTrack& track, int frame, const Readout& readout) {
+  const RenderOptions options = shutter_options(sequence.color_options(color_settings, frame));
   const Shutter shutter = frame_shutter(final_pass, sequence, frame);
-  const ColorLayers layers =
-      shutter_layers(renderer, camera, shutter, track, options, readout, clean);
-  const Image<float> depth =
-      release_denoiser(color_settings)->guided_by_depth()
-          ? shutter_depth(renderer, camera, shutter, track, readout, clean_depth)
-          : Image<float>{};
+  const ColorLayers layers = [&] {
+    const ScopedPhase phase("final pass: path tracing");
+    return renderer.color_layers(camera, shutter, track, readout, options);
+  }();
+  const Image<float> depth = [&] {
+    if (!release_denoiser(color_settings)->guided_by_depth()) return Image<float>{};
+    const ScopedPhase phase("final pass: depth guide");
+    return renderer.depth(camera, shutter, track, readout);
+  }();
   const Image<std::uint16_t> no_ids(camera.width, camera.height, 1);
   return denoised_color(color_settings, layers, camera, depth.view(), no_ids.view());
 }
 
 Image<float> final_cube_color(const ColorSection& color_settings,
                               const FinalPassSection& final_pass, int face_size,
-                              const Sequence& sequence, Renderer& renderer, int frame,
-                              const CubeFrame& clean) {
-  const RenderOptions options = sequence.color_options(color_settings, frame);
+                              const Sequence& sequence, Renderer& renderer, int frame) {
+  const RenderOptions options = shutter_options(sequence.color_options(color_settings, frame));
   const CubeFrame cube = shutter_cube(
       renderer, face_size, frame_shutter(final_pass, sequence, frame),
       [&](double t) { return sequence.city.rig(t); }, options,
-      release_denoiser(color_settings)->guided_by_depth(), &clean);
+      release_denoiser(color_settings)->guided_by_depth());
   return denoised_cube_color(color_settings, cube.color, cube.truth);
 }
 
@@ -131,7 +132,7 @@ nlohmann::json final_json(const FinalPassSection& final_pass, const Sequence& se
     per_frame.push_back(
         {{"adapted_key", e.adapted_key}, {"integration", e.integration}, {"gain", e.gain}});
   return {{"shutter_angle", final_pass.shutter_angle},
-          {"shutter_steps", kCentredShutterSteps},
+          {"motion_blur", "continuous"},
           {"sensor",
            {{"f_number", s.f_number},
             {"pixel_pitch_um", s.pixel_pitch * 1e6},

@@ -66,11 +66,10 @@ ViewImages view_images(GroundTruth truth, Image<std::uint8_t> color,
 struct FinalFlowscape {
   Image<std::uint8_t> faces, erp;
 };
-FinalFlowscape final_flowscape(const FramePipeline& p, const Exposure& exposure, int frame,
-                               const CubeFrame& clean) {
+FinalFlowscape final_flowscape(const FramePipeline& p, const Exposure& exposure, int frame) {
   const int face_size = p.cube_to_erp->face_size;
   const Image<float> faces =
-      final_cube_color(p.color, p.final_pass, face_size, p.sequence, p.renderer, frame, clean);
+      final_cube_color(p.color, p.final_pass, face_size, p.sequence, p.renderer, frame);
   FinalFlowscape out{Image<std::uint8_t>(faces.width, faces.height, 3), {}};
   const Projection face_camera = Projection::cube_face(Face::Front, face_size);
   int view = 1;
@@ -259,9 +258,8 @@ CameraColor camera_color(const FramePipeline& p, const DirectCamera& camera, int
   if (camera.meters)
     *exposure = exposure_after(p.final_pass, p.sequence, *exposure, out.clean.view(),
                                camera.projection, frame);
-  const Image<float> linear =
-      final_color(p.color, p.final_pass, p.sequence, p.renderer, camera.projection, camera.track,
-                  frame, camera.readout, out.layers, truth.depth);
+  const Image<float> linear = final_color(p.color, p.final_pass, p.sequence, p.renderer,
+                                          camera.projection, camera.track, frame, camera.readout);
   out.final = develop(p.final_pass, p.sequence, linear.view(), camera.projection, camera.real_lens,
                       *exposure, frame, camera.view);
   return out;
@@ -284,7 +282,7 @@ FrameImages faces_and_stitched_erp(const FramePipeline& p, const TruthPlan& plan
   if (exposure) {
     const ScopedPhase phase("final pass");
     *exposure = exposure_after(p.final_pass, p.sequence, *exposure, erp_clean.view(), erp, frame);
-    final = final_flowscape(p, *exposure, frame, cube);
+    final = final_flowscape(p, *exposure, frame);
   }
   FrameImages images;
   const Projection faces = Projection::pinhole(face_size, 6 * face_size, 90);

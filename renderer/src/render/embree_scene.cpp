@@ -36,10 +36,11 @@ void coverage_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-void copy_vertices(const Mesh& mesh, float* vertices) {
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = mesh.vertices[i][c];
+void copy_vertices(const std::vector<Eigen::Vector3f>& from, float* vertices) {
+  for (std::size_t i = 0; i < from.size(); ++i)
+    for (int c = 0; c < 3; ++c) vertices[3 * i + c] = from[i][c];
 }
+void copy_vertices(const Mesh& mesh, float* vertices) { copy_vertices(mesh.vertices, vertices); }
 
 // How a BVH is built: once for the world, once for an actor's mesh that many actors share (worth
 // the slower, better build), or per posed time (skinned): Posed rebuilds it at every pose (its
@@ -48,9 +49,10 @@ void copy_vertices(const Mesh& mesh, float* vertices) {
 // shutter's, posed once per line).
 enum class Build { World, Shared, Posed, Refit };
 
-// A BVH of one mesh.
+// A BVH of one mesh; with `steps`, of its vertices at each step of a shutter (motion blur).
+using StepVertices = std::vector<std::vector<Eigen::Vector3f>>;
 RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, Build build,
-                   RTCGeometry* geometry_out = nullptr) {
+                   RTCGeometry* geometry_out = nullptr, const StepVertices* steps = nullptr) {
   RTCScene bvh = rtcNewScene(device);
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (build == Build::Posed || build == Build::Refit)
@@ -63,9 +65,13 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked,
     rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_HIGH);
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
   }
-  copy_vertices(mesh, static_cast<float*>(rtcSetNewGeometryBuffer(
-                          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                          mesh.vertices.size())));
+  if (steps) rtcSetGeometryTimeStepCount(geometry, unsigned(steps->size()));
+  const std::size_t slots = steps ? steps->size() : 1;
+  for (std::size_t slot = 0; slot < slots; ++slot)
+    copy_vertices(steps ? (*steps)[slot] : mesh.vertices,
+                  static_cast<float*>(rtcSetNewGeometryBuffer(
+                      geometry, RTC_BUFFER_TYPE_VERTEX, unsigned(slot), RTC_FORMAT_FLOAT3,
+                      3 * sizeof(float), mesh.vertices.size())));
   auto* indices = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(unsigned), mesh.triangles.size()));
@@ -138,7 +144,7 @@ RTCRay make_ray(const BundleRay& from) {
   ray.org_x = float(origin.x()), ray.org_y = float(origin.y()), ray.org_z = float(origin.z());
   ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y());
   ray.dir_z = float(direction.z());
-  ray.tnear = 0, ray.tfar = from.far, ray.mask = kSceneMask;
+  ray.tnear = 0, ray.tfar = from.far, ray.mask = kSceneMask, ray.time = from.time;
   return ray;
 }
 
@@ -157,7 +163,7 @@ void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& pack
     packet.dir_x[i] = float(d.x()), packet.dir_y[i] = float(d.y()), packet.dir_z[i] = float(d.z());
     packet.tnear[i] = active ? 0.0f : 1.0f, packet.tfar[i] = active ? rays[i].far : 0.0f;
     packet.mask[i] = active ? mask : 0u;
-    packet.time[i] = 0, packet.id[i] = 0, packet.flags[i] = 0;
+    packet.time[i] = active ? rays[i].time : 0.0f, packet.id[i] = 0, packet.flags[i] = 0;
   }
 }
 
@@ -182,7 +188,8 @@ void intersect_packet(RTCScene scene, const BundleRay* rays, int count, unsigned
                         packet.ray.tfar[i],
                         {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]},
                         hit.u[i],
-                        hit.v[i]};
+                        hit.v[i],
+                        rays[i].time};
 }
 
 void occluded_packet(RTCScene scene, const BundleRay* rays, int count, unsigned mask,
@@ -289,6 +296,7 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
 EmbreeScene::~EmbreeScene() {
   release(now_);
   if (lines_.top) release(lines_);
+  if (shutter_.top) release(shutter_);
   for (PosedScene& target : targets_) release(target);
   for (RTCScene s : bvhs_)
     if (s) rtcReleaseScene(s);
@@ -359,6 +367,121 @@ bool EmbreeScene::pose(PosedScene& scene, double t) const {
   return true;
 }
 
+int EmbreeScene::shutter_steps(double seconds) {
+  return 1 + std::max(1, int(std::ceil(seconds / kShutterStepSeconds - 1e-9)));
+}
+
+namespace {
+
+// Instances `bvh` as mesh `mesh` of `top`, at each of `poses` (one: still).
+void attach_instance(RTCDevice device, RTCScene top, unsigned mesh, RTCScene bvh, unsigned mask,
+                     const std::vector<Pose>& poses) {
+  RTCGeometry instance = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(instance, bvh);
+  rtcSetGeometryMask(instance, mask);
+  if (poses.size() > 1) rtcSetGeometryTimeStepCount(instance, unsigned(poses.size()));
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const Eigen::Matrix<float, 3, 4> transform = poses[k].matrix().topRows<3>().cast<float>();
+    rtcSetGeometryTransform(instance, unsigned(k), RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR,
+                            transform.data());
+  }
+  rtcCommitGeometry(instance);
+  rtcAttachGeometryByID(top, instance, mesh);
+  rtcReleaseGeometry(instance);
+}
+
+}  // namespace
+
+EmbreeScene::PosedScene EmbreeScene::shutter_scene(double open, double close, int steps) const {
+  const ScopedPhase phase("BVH updates: the shutter's motion");
+  std::vector<double> times;
+  for (int k = 0; k < steps; ++k) times.push_back(open + (close - open) * k / (steps - 1));
+  const std::size_t middle = std::size_t(steps / 2);  // stands for the shutter (pose_now, mesh)
+  PosedScene scene;
+  scene.top = rtcNewScene(device_);
+  scene.time = open, scene.close = close, scene.steps = steps, scene.posed = true;
+  scene.deformed.resize(skinned_.size());
+  tbb::parallel_for(std::size_t(0), skinned_.size(), [&](std::size_t k) {
+    const MeshRef& ref = meshes_[skinned_[k]];
+    const Part& part = scene_.actors[ref.actor].parts[ref.part];
+    Deformed& d = scene.deformed[k];
+    d.mesh = *ref.rest;
+    skin(*ref.rest, part.bones(times[middle]), d.mesh);
+    // its vertices at the shutter's open and close (a limb turns little over a shutter)
+    StepVertices vertices(2);
+    for (std::size_t s = 0; s < 2; ++s) {
+      const std::vector<Pose> bones = part.bones(s == 0 ? open : close);
+      for (std::size_t v = 0; v < ref.rest->vertices.size(); ++v)
+        vertices[s].push_back(skinned_vertex(*ref.rest, v, bones));
+    }
+    const auto masked = std::find_if(masked_.begin(), masked_.end(),
+                                     [&](const MaskedMesh& m) { return m.ref == &ref; });
+    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, Build::Posed,
+                      &d.geometry, &vertices);
+  });
+  scene.poses.resize(meshes_.size());
+  scene.inverses.resize(meshes_.size());
+  scene.step_poses.resize(meshes_.size());
+  for (unsigned m = 0; m < meshes_.size(); ++m) {
+    std::vector<Pose> poses;
+    for (double t : times) poses.push_back(pose_at(m, t));
+    const bool still = std::all_of(poses.begin(), poses.end(), [&](const Pose& p) {
+      return p.matrix() == poses.front().matrix();
+    });
+    const int k = meshes_[m].skinned;
+    scene.poses[m] = poses[still ? 0 : middle];
+    scene.inverses[m] = scene.poses[m].inverse();
+    if (!still) scene.step_poses[m] = poses;
+    attach_instance(device_, scene.top, m, k < 0 ? bvhs_[m] : scene.deformed[k].bvh,
+                    meshes_[m].color_only ? kColorOnlyMask : kSceneMask,
+                    still ? std::vector<Pose>{poses.front()} : poses);
+  }
+  rtcCommitScene(scene.top);
+  return scene;
+}
+
+void EmbreeScene::set_shutter(double open, double close, int steps) {
+  if (!(close > open) || steps < 2)
+    throw std::invalid_argument("set_shutter: needs close > open and at least 2 steps");
+  const bool same =
+      shutter_.top && shutter_.time == open && shutter_.close == close && shutter_.steps == steps;
+  if (!same) {
+    if (shutter_.top) release(shutter_);
+    shutter_ = shutter_scene(open, close, steps);
+  }
+  use(shutter_);
+}
+
+namespace {
+
+// Where a ray's time falls among `count` evenly spaced steps, as Embree takes it: the step
+// before it and the share of the way to the next.
+std::pair<std::size_t, double> time_segment(float time, std::size_t count) {
+  const double position = std::clamp(double(time), 0.0, 1.0) * double(count - 1);
+  const std::size_t step = std::min(std::size_t(position), count - 2);
+  return {step, position - double(step)};
+}
+
+}  // namespace
+
+Pose EmbreeScene::pose_of(const Hit& hit) const {
+  const std::vector<std::vector<Pose>>& steps = current_->step_poses;
+  if (steps.empty() || steps[hit.mesh].empty()) return current_->poses[hit.mesh];
+  const auto [step, share] = time_segment(hit.time, steps[hit.mesh].size());
+  Pose pose;  // Embree interpolates the matrices, not the motions
+  pose.matrix() =
+      (1 - share) * steps[hit.mesh][step].matrix() + share * steps[hit.mesh][step + 1].matrix();
+  return pose;
+}
+
+Pose EmbreeScene::world_to_object(const Hit& hit) const {
+  const std::vector<std::vector<Pose>>& steps = current_->step_poses;
+  if (steps.empty() || steps[hit.mesh].empty()) return current_->inverses[hit.mesh];
+  Pose inverse;  // an interpolated rotation is not quite one: its full inverse
+  inverse.matrix() = pose_of(hit).matrix().inverse();
+  return inverse;
+}
+
 void EmbreeScene::use(const PosedScene& scene) {
   current_ = &scene;
   for (unsigned k = 0; k < skinned_.size(); ++k)
@@ -415,15 +538,15 @@ Vec3 EmbreeScene::world_point(const SurfacePoint& p, double t) const {
 
 Vec3 EmbreeScene::pattern_point(const Hit& hit, const Vec3& point) const {
   const MeshRef& ref = meshes_[hit.mesh];
-  if (ref.skinned < 0) return current_->inverses[hit.mesh] * point;
+  if (ref.skinned < 0) return world_to_object(hit) * point;
   return point_on(*ref.rest, hit.triangle, hit.u, hit.v);
 }
 
-Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
+Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction, float time) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
-  rh.ray = make_ray({origin, direction, true, kInfinity});
+  rh.ray = make_ray({origin, direction, true, kInfinity, time});
   rh.hit.geomID = rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(current_->top, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
@@ -433,7 +556,8 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction) const {
           rh.ray.tfar,
           {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
           rh.hit.u,
-          rh.hit.v};
+          rh.hit.v,
+          time};
 }
 
 bool EmbreeScene::occluded(int target, const Vec3& origin, const Vec3& direction,

@@ -42,6 +42,7 @@ struct BundleRay {
   Vec3 origin = Vec3::Zero(), direction = Vec3::UnitX();  // unit direction
   bool active = false;
   float far = std::numeric_limits<float>::infinity();  // how far it looks
+  float time = 0;  // in a shutter scene (set_shutter): 0 at its open, 1 at its close
 };
 constexpr int kBundleSize = 16;  // Embree's widest packet
 
@@ -90,6 +91,7 @@ struct Hit {
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // (v1 - v0) x (v2 - v0) in the mesh's frame
   float u = 0, v = 0;  // barycentric: the point is (1 - u - v) v0 + u v1 + v v2
+  float time = 0;      // the ray's (BundleRay::time)
 };
 
 // A surface point held by what it lies on, so it can be found at any time: a rigid part's point
@@ -131,7 +133,16 @@ class EmbreeScene {
   // Poses a scene of its own at `t` and makes it `now` (no targets): a rolling shutter's lines,
   // posed hundreds of times a frame, whose walkers' BVHs are refitted rather than rebuilt.
   void set_line_time(double t);
-  Hit intersect(const Vec3& origin, const Vec3& direction) const;  // at `now`; unit direction
+  // Poses the scene over [open, close] with Embree's motion blur and makes it `now`: each moving
+  // part's transform, and a skinned part's vertices, at `steps` (>= 2) evenly spaced times from
+  // open to close, which Embree interpolates linearly for each ray at its own time
+  // (BundleRay::time). A hit's pose and object frame are then its time's (pose_of ...).
+  void set_shutter(double open, double close, int steps);
+  // The steps set_shutter takes for `seconds`: one every kShutterStepSeconds at least.
+  static int shutter_steps(double seconds);
+  static constexpr double kShutterStepSeconds = 1 / 240.0;
+  Hit intersect(const Vec3& origin, const Vec3& direction,
+                float time = 0) const;  // at `now`; unit direction
   // Whether anything lies within `distance` along the ray (infinity: anywhere), at target time
   // `target` of set_times (kNow: at `now`).
   static constexpr int kNow = -1;
@@ -164,12 +175,16 @@ class EmbreeScene {
   // pose of a skinned one.
   Vec3 pattern_point(const Hit& hit, const Vec3& point) const;
 
+  // The pose of the mesh `hit` is on and its inverse at the hit's time: in a shutter scene
+  // interpolated as Embree does, else pose_now's. (A skinned part's shading takes its mesh as
+  // posed at the shutter's middle: its limbs turn little over a shutter.)
+  Pose pose_of(const Hit& hit) const;
+  Pose world_to_object(const Hit& hit) const;
   // Poses at the times of set_times (evaluated once per call there, not per ray).
   const Pose& pose_now(unsigned mesh) const { return current_->poses[mesh]; }
   RTCScene scene_at(int target) const {  // kNow or a target of set_times
     return target == kNow ? current_->top : targets_[std::size_t(target)].top;
   }
-  const Pose& world_to_object_now(unsigned mesh) const { return current_->inverses[mesh]; }
   const Pose& pose_at_target(int target, unsigned mesh) const {
     return targets_[std::size_t(target)].poses[mesh];
   }
@@ -191,7 +206,13 @@ class EmbreeScene {
     std::vector<Deformed> deformed{};  // one per skinned part
     double time = 0;
     bool posed = false;
+    // A shutter scene's (set_shutter, posed from `time` to `close`): each moving mesh's poses at
+    // its steps (empty for a still one: `poses` holds it).
+    double close = 0;
+    int steps = 1;
+    std::vector<std::vector<Pose>> step_poses{};
   };
+  PosedScene shutter_scene(double open, double close, int steps) const;
   PosedScene posed_scene(bool refit_skinned);    // the line scene's skinned BVHs refit
   void use(const PosedScene& scene);             // `now` is `scene`'s
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
@@ -205,6 +226,7 @@ class EmbreeScene {
   std::vector<unsigned> skinned_;      // the meshes that are skinned parts
   std::vector<MaskedMesh> masked_;     // reserved up front: Embree keeps pointers into it
   PosedScene now_, lines_;             // set_times' and set_line_time's (made when first asked)
+  PosedScene shutter_;                 // set_shutter's (made anew for each shutter)
   const PosedScene* current_ = &now_;  // `now`: the one rays see
   std::vector<PosedScene> targets_;    // grown as requests need, never shrunk
   const CoverageTest* coverage_;

@@ -15,6 +15,7 @@ enum Layer { kOther, kDirect, kIndirect, kSpecular, kLayerCount };
 
 struct PathState {
   Vec3 origin, dir;
+  float time = 0;  // over a shutter: its rays' (BundleRay::time)
   Rgb throughput = Rgb::Ones();
   Rgb light[kLayerCount] = {Rgb::Zero(), Rgb::Zero(), Rgb::Zero(), Rgb::Zero()};
   Layer layer = kOther;  // where the light the path gathers now goes

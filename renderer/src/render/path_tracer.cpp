@@ -34,6 +34,7 @@ struct FrameContext {
   const ImageTextures& images;
   const Lights& lights;
   bool textures;
+  const ShutterCamera* shutter;  // null: every sample at the scene's `now`
 };
 
 // The fog between the path's origin and `distance` along it: the light it scatters in, and the
@@ -92,11 +93,32 @@ class PixelLooks {
     entries_[slot] = {hit.mesh, hit.triangle, look_at_centre(hit, sample_dir)};
     return entries_[slot].look;
   }
+  // Over a shutter the surface moves in the pixel: the look at the sample's own point, shared by
+  // the pixel's samples that met the triangle within the footprint of it on the mesh (where its
+  // texture sits): their looks, filtered over the footprint, would hardly differ.
+  const TexturedLook& moving_at(const Hit& hit, const Vec3& origin, const Vec3& dir) {
+    const double footprint = spread_ * hit.distance;
+    const Mesh& rest = *frame_.embree.mesh(hit.mesh).rest;
+    const Eigen::Vector3i& tri = rest.triangles[hit.triangle];
+    const Vec3 on_mesh = (1.0 - hit.u - hit.v) * rest.vertices[tri[0]].cast<double>() +
+                         double(hit.u) * rest.vertices[tri[1]].cast<double>() +
+                         double(hit.v) * rest.vertices[tri[2]].cast<double>();
+    for (int k = 0; k < count_; ++k)
+      if (entries_[k].mesh == hit.mesh && entries_[k].triangle == hit.triangle &&
+          (entries_[k].on_mesh - on_mesh).norm() < footprint)
+        return entries_[k].look;
+    const int slot = count_ < kSlots ? count_++ : kSlots - 1;
+    entries_[slot] = {hit.mesh, hit.triangle,
+                      textured_look(frame_.embree, frame_.images, hit, origin + hit.distance * dir,
+                                    dir, footprint),
+                      on_mesh};
+    return entries_[slot].look;
+  }
 
  private:
   TexturedLook look_at_centre(const Hit& hit, const Vec3& sample_dir) const {
     const EmbreeScene& embree = frame_.embree;
-    const Pose& pose = embree.pose_now(hit.mesh);
+    const Pose pose = embree.pose_of(hit);
     const Vec3 normal = pose.linear() * hit.normal.cast<double>();
     const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
     const Vec3 corner = pose * mesh.vertices[mesh.triangles[hit.triangle][0]].cast<double>();
@@ -111,6 +133,7 @@ class PixelLooks {
   struct Entry {
     unsigned mesh, triangle;
     TexturedLook look;
+    Vec3 on_mesh = Vec3::Zero();  // over a shutter: where it was looked up
   };
   const FrameContext& frame_;
   Vec3 origin_, centre_;
@@ -131,7 +154,8 @@ void trace_bundle(const FrameContext& frame, PixelLooks* const* camera_looks, Pa
   bool blocked[kBundleSize];
   // a sample outside a lens's image has no ray (zero) and no light
   for (int i = 0; i < count; ++i)
-    bundle[i] = {paths[i].origin, paths[i].dir, !paths[i].dir.isZero()};
+    bundle[i] = {paths[i].origin, paths[i].dir, !paths[i].dir.isZero(),
+                 std::numeric_limits<float>::infinity(), paths[i].time};
   for (int bounce = 0; bounce <= max_bounces; ++bounce) {
     const int alive = int(std::count_if(bundle, bundle + count, [](auto& r) { return r.active; }));
     if (alive == 0) break;
@@ -144,7 +168,8 @@ void trace_bundle(const FrameContext& frame, PixelLooks* const* camera_looks, Pa
       TexturedLook own;  // a specular chain's hit: its own point
       if (frame.textures && hits[i].found && !paths[i].scattered && is_textured(embree, hits[i])) {
         if (bounce == 0) {
-          look = &camera_looks[i]->at(hits[i], paths[i].dir);
+          look = frame.shutter ? &camera_looks[i]->moving_at(hits[i], paths[i].origin, paths[i].dir)
+                               : &camera_looks[i]->at(hits[i], paths[i].dir);
         } else {
           own = textured_look(embree, frame.images, hits[i],
                               paths[i].origin + hits[i].distance * paths[i].dir, paths[i].dir,
@@ -156,7 +181,10 @@ void trace_bundle(const FrameContext& frame, PixelLooks* const* camera_looks, Pa
       bundle[i].origin = paths[i].origin, bundle[i].direction = paths[i].dir;
     }
     BundleRay shadow_rays[kBundleSize];
-    for (int i = 0; i < count; ++i) shadow_rays[i] = shadows[i].ray, rays += shadows[i].ray.active;
+    for (int i = 0; i < count; ++i) {
+      shadow_rays[i] = shadows[i].ray, shadow_rays[i].time = paths[i].time;
+      rays += shadows[i].ray.active;
+    }
     embree.occluded(shadow_rays, count, blocked);
     for (int i = 0; i < count; ++i)
       if (shadows[i].ray.active && !blocked[i])
@@ -251,8 +279,12 @@ struct PixelGroupTracer {
              PixelLooks** looks) const {
     samplers[lane] = Sampler(pixel.keys, index, options.samples_per_pixel);
     PathState& path = paths[lane];
-    path.origin = camera.translation();
-    path.dir = (camera.linear() * pixel.camera_rays(samplers[lane].next())).normalized();
+    const ShutterCamera* shutter = frame.shutter;
+    const double u = shutter ? samplers[lane].time() : 0;
+    const Pose sample_camera = shutter ? shutter->at(u) : camera;
+    path.time = shutter ? shutter->ray_time(u) : 0.0f;
+    path.origin = sample_camera.translation();
+    path.dir = (sample_camera.linear() * pixel.camera_rays(samplers[lane].next())).normalized();
     path.spread = pixel.spread;
     path.indirect_weight = indirect_weight(index);
     looks[lane] = &pixel.looks;
@@ -276,6 +308,30 @@ int next_traced(ImageView<const std::uint8_t> pixels, int y, int x, int end) {
 
 }  // namespace
 
+Pose ShutterCamera::at(double u) const {
+  const double position = std::clamp(u, 0.0, 1.0) * double(positions.size() - 1);
+  const std::size_t k = std::min(std::size_t(position), positions.size() - 2);
+  const double share = position - double(k);
+  Pose pose = Pose::Identity();
+  pose.linear() = rotations[k].slerp(share, rotations[k + 1]).toRotationMatrix();
+  pose.translation() = (1 - share) * positions[k] + share * positions[k + 1];
+  return pose;
+}
+
+ShutterCamera shutter_camera(const std::function<Pose(double)>& track, double open, double close,
+                             double scene_open, double scene_close, int steps) {
+  ShutterCamera camera;
+  for (int k = 0; k < steps; ++k) {
+    const Pose pose = track(open + (close - open) * k / (steps - 1));
+    camera.positions.push_back(pose.translation());
+    camera.rotations.emplace_back(pose.linear());
+  }
+  const double span = scene_close - scene_open;
+  camera.first = float((open - scene_open) / span),
+  camera.last = float((close - scene_open) / span);
+  return camera;
+}
+
 ColorLayers color_layers_of(int width, int height) {
   const int W = width, H = height;
   return {Image<float>(W, H, 3), Image<float>(W, H, 3), Image<float>(W, H, 3),
@@ -285,10 +341,10 @@ ColorLayers color_layers_of(int width, int height) {
 
 std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const Lights& lights,
                          const Projection& projection, const Pose& camera,
-                         const RenderOptions& options, const PixelWindow& window,
-                         ColorLayers& out) {
+                         const RenderOptions& options, const PixelWindow& window, ColorLayers& out,
+                         const ShutterCamera* shutter) {
   std::atomic<std::uint64_t> rays{0};
-  const FrameContext frame{embree, images, lights, options.textures};
+  const FrameContext frame{embree, images, lights, options.textures, shutter};
   const PixelGroupTracer tracer{frame, projection, camera, options};
   const int group_size = std::max(1, kBundleSize / std::max(1, options.samples_per_pixel));
   // 2-D blocks: a rolling shutter's window is a single line

@@ -129,6 +129,80 @@ ColorLayers Renderer::color_layers(const Projection& projection, double time,
   return out;
 }
 
+namespace {
+
+// The shutter scene's span: from the first line's opening to the last line's closing.
+Shutter capture_span(const Projection& projection, const Readout& readout, const Shutter& shutter) {
+  if (readout.global()) return shutter;
+  const int lines = readout.lines(projection);
+  return {shutter.open + readout.offset(0.5, lines),
+          shutter.close + readout.offset(lines - 0.5, lines)};
+}
+
+// Poses `embree` over the capture with motion blur, then calls visit(the line's camera over its
+// shutter, the line's middle time, its pixels) for each line (one for a global shutter).
+template <class Visit>
+void over_shutter(EmbreeScene& embree, const Projection& projection, const Shutter& shutter,
+                  const CameraTrack& camera, const Readout& readout, Visit&& visit) {
+  const Shutter span = capture_span(projection, readout, shutter);
+  embree.set_shutter(span.open, span.close, EmbreeScene::shutter_steps(span.close - span.open));
+  const double middle = (shutter.open + shutter.close) / 2;
+  const int camera_steps = EmbreeScene::shutter_steps(shutter.close - shutter.open);
+  for_each_line(projection, readout, middle, [&](double t, const PixelWindow& window) {
+    const ShutterCamera line =
+        shutter_camera(camera, shutter.open + (t - middle), shutter.close + (t - middle), span.open,
+                       span.close, camera_steps);
+    visit(line, t, window);
+  });
+}
+
+// The depth along the camera ray `ray` averaged over kShutterDepthTimes times of the line's
+// shutter where it meets a surface (+infinity where it never does).
+float depth_over_shutter(const EmbreeScene& embree, const ShutterCamera& line, const Vec3& ray) {
+  double sum = 0;
+  int met = 0;
+  for (int k = 0; k < Renderer::kShutterDepthTimes; ++k) {
+    const double u = (k + 0.5) / Renderer::kShutterDepthTimes;
+    const Pose pose = line.at(u);
+    const Hit hit =
+        embree.intersect(pose.translation(), (pose.linear() * ray).normalized(), line.ray_time(u));
+    if (hit.found) sum += hit.distance, ++met;
+  }
+  return met > 0 ? float(sum / met) : std::numeric_limits<float>::infinity();
+}
+
+}  // namespace
+
+ColorLayers Renderer::color_layers(const Projection& projection, const Shutter& shutter,
+                                   const CameraTrack& camera, const Readout& readout,
+                                   const RenderOptions& options, RenderStats* stats) {
+  require_mask_size("color_layers", options.pixels, projection.width, projection.height);
+  ColorLayers out = color_layers_of(projection.width, projection.height);
+  std::uint64_t rays = 0;
+  over_shutter(impl_->embree, projection, shutter, camera, readout,
+               [&](const ShutterCamera& line, double t, const PixelWindow& window) {
+                 rays += path_trace(impl_->embree, impl_->images, impl_->lights_at(t), projection,
+                                    line.at(0.5), options, window, out, &line);
+               });
+  if (stats) stats->rays = rays;
+  return out;
+}
+
+Image<float> Renderer::depth(const Projection& projection, const Shutter& shutter,
+                             const CameraTrack& camera, const Readout& readout) {
+  Image<float> depth(projection.width, projection.height, 1);
+  const EmbreeScene& embree = impl_->embree;
+  over_shutter(impl_->embree, projection, shutter, camera, readout,
+               [&](const ShutterCamera& line, double, const PixelWindow& window) {
+                 parallel_pixels(window, [&](int x, int y) {
+                   const Vec3 ray = projection.ray(Vec2(x + 0.5, y + 0.5));
+                   *depth.pixel(x, y) = ray.isZero() ? std::numeric_limits<float>::quiet_NaN()
+                                                     : depth_over_shutter(embree, line, ray);
+                 });
+               });
+  return depth;
+}
+
 Image<float> Renderer::depth(const Projection& projection, double time, const CameraTrack& camera,
                              const Readout& readout) {
   Image<float> depth(projection.width, projection.height, 1);

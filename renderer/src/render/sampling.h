@@ -108,6 +108,12 @@ class Sampler {
     const std::uint64_t bits = mix_bits(pair_key(keys_->pixel, pair_) ^ index_);
     return {double(bits >> 40) * 0x1.0p-24, double(bits >> 8 & 0xffffffu) * 0x1.0p-24};
   }
+  // The sample's time over a shutter (motion blur) in [0, 1): stratified over the pixel's samples
+  // in an order of its own, so that it follows neither the jitter nor the light's pairs.
+  double time() const {
+    const std::uint64_t key = pair_key(keys_->pixel, 0);
+    return sobol::point(index_, bits_, key, mix_bits(key)).x();
+  }
 
  private:
   static std::uint64_t pair_key(std::uint64_t pixel_key, int pair) {

@@ -88,18 +88,18 @@ TexturedLook textured_look(const EmbreeScene& embree, const ImageTextures& image
   const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
   const Eigen::Vector3i& tri = mesh.triangles[hit.triangle];
   const Material& m = material_of(embree, hit);
-  const Vec3 local = embree.world_to_object_now(hit.mesh) * point;
+  const Vec3 local = embree.world_to_object(hit) * point;
   const Vec2 b = barycentric(mesh, tri, local);
   const Vec3 fixed = embree.mesh(hit.mesh).skinned < 0
                          ? local
                          : embree.pattern_point({true, hit.mesh, hit.triangle, hit.distance,
-                                                 hit.normal, float(b.x()), float(b.y())},
+                                                 hit.normal, float(b.x()), float(b.y()), hit.time},
                                                 point);
   const Vec2 uv = interpolated_uv(mesh, hit.triangle, b.x(), b.y());
   const UvFrame frame = uv_frame(mesh, tri);
   // the cone's footprint on the surface, lengthened by the slant (the geometric mean of the
   // ellipse's axes), in uv units
-  const Vec3 normal = (embree.pose_now(hit.mesh).linear() * hit.normal.cast<double>()).normalized();
+  const Vec3 normal = (embree.pose_of(hit).linear() * hit.normal.cast<double>()).normalized();
   const double slant = std::max(std::abs(dir.dot(normal)), 0.05);
   const double uv_footprint = footprint / std::sqrt(slant) * frame.uv_per_metre;
   TexturedLook look{m.albedo.cast<double>(), m.roughness};
@@ -116,7 +116,7 @@ TexturedLook textured_look(const EmbreeScene& embree, const ImageTextures& image
 Surface surface_at(const EmbreeScene& embree, const Hit& hit, const Vec3& origin, const Vec3& dir,
                    const TexturedLook* look) {
   const Mesh& mesh = *embree.mesh(hit.mesh).mesh;
-  const Mat3 rotation = embree.pose_now(hit.mesh).linear();
+  const Mat3 rotation = embree.pose_of(hit).linear();
   const Material& m = material_of(embree, hit);
   Surface s;
   s.geometric = (rotation * hit.normal.cast<double>()).normalized();

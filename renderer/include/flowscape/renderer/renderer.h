@@ -30,6 +30,11 @@ struct Moment {
 // Where a camera (or the rig) is at any time: camera -> world, as FramePair::rig.
 using CameraTrack = std::function<Pose(double time)>;
 
+// The time a camera's shutter is open (shutter.h's centred_shutter makes one).
+struct Shutter {
+  double open = 0, close = 0;  // seconds
+};
+
 // The ground truth a frame needs: flow and validity to the pair's next moment and to each of
 // `more` (other frame gaps, earlier frames: flow goes from pair.time to the target), and, when
 // asked, the 3-D motion of each pixel's surface point to the pair's next moment and its normals.
@@ -181,6 +186,19 @@ class Renderer {
   ColorLayers color_layers(const Projection& projection, double time, const CameraTrack& camera,
                            const Readout& readout, const RenderOptions& options = {},
                            RenderStats* stats = nullptr);
+  // The colour layers over an open shutter (motion blur, continuous: Embree's): each sample traced
+  // at its own time in [open, close] (stratified over the pixel's samples) with the scene and the
+  // camera on `camera` then, the lights at its middle. With a rolling shutter each line's shutter
+  // is shifted by the line's offset, so the image holds the skew and the blur together.
+  ColorLayers color_layers(const Projection& projection, const Shutter& shutter,
+                           const CameraTrack& camera, const Readout& readout,
+                           const RenderOptions& options, RenderStats* stats = nullptr);
+  // The distance along each pixel centre's ray averaged over kShutterDepthTimes times spread over
+  // the shutter, those it meets a surface at (+infinity where it never does, NaN outside a lens's
+  // image): a denoising guide that does not cut the blur trails.
+  Image<float> depth(const Projection& projection, const Shutter& shutter,
+                     const CameraTrack& camera, const Readout& readout = {});
+  static constexpr int kShutterDepthTimes = 2;
 
  private:
   struct Impl;

@@ -35,20 +35,16 @@ LensCover release_lens_cover(const FinalPassSection& final_pass, const Sequence&
 Image<std::uint8_t> release_lens_mask(const FinalPassSection& final_pass, const Sequence& sequence,
                                       const Projection& camera, int view);
 
-// One view's colour over the frame's shutter, denoised (linear, the clean pass's units); with a
-// rolling shutter each line's shutter is centred on its own time. The clean pass's layers of the
-// view (`clean`, release_layers) and its ground-truth depth stand for the shutter's middle third
-// (shutter.h): the outer thirds are traced with a quarter of the samples each.
+// One view's colour over the frame's shutter (motion blur: each sample at its own time,
+// shutter.h), traced with shutter_options' samples and denoised (linear, the clean pass's units);
+// with a rolling shutter each line's shutter is centred on its own time.
 Image<float> final_color(const ColorSection& color_settings, const FinalPassSection& final_pass,
                          const Sequence& sequence, Renderer& renderer, const Projection& camera,
-                         const CameraTrack& track, int frame, const Readout& readout,
-                         const ColorLayers& clean, const Image<float>& clean_depth);
-// The six cube faces' (stacked), for the flowscape rig, around the clean pass's cube (its colour
-// layers, release_cube_layers, and ground truth).
+                         const CameraTrack& track, int frame, const Readout& readout);
+// The six cube faces' (stacked), for the flowscape rig.
 Image<float> final_cube_color(const ColorSection& color_settings,
                               const FinalPassSection& final_pass, int face_size,
-                              const Sequence& sequence, Renderer& renderer, int frame,
-                              const CubeFrame& clean);
+                              const Sequence& sequence, Renderer& renderer, int frame);
 
 // A view's final colour through the camera, 8-bit sRGB: `lens` says whether it is a real lens
 // (vignetting) or a virtual camera (the ERP, a cube face); `view` seeds its noise apart.
