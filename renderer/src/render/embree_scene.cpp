@@ -392,6 +392,27 @@ void attach_instance(RTCDevice device, RTCScene top, unsigned mesh, RTCScene bvh
 
 }  // namespace
 
+// A skinned part over [open, close]: its shading mesh posed at `middle`, its BVH with its vertices
+// at the open and the close (a limb turns little over a shutter; more time steps cost Embree's
+// motion-blur builder several times more).
+EmbreeScene::Deformed EmbreeScene::shutter_deformed(const MeshRef& ref, double open, double middle,
+                                                    double close) const {
+  const Part& part = scene_.actors[ref.actor].parts[ref.part];
+  Deformed d{*ref.rest};
+  skin(*ref.rest, part.bones(middle), d.mesh);
+  StepVertices vertices(2);
+  for (std::size_t s = 0; s < 2; ++s) {
+    const std::vector<Pose> bones = part.bones(s == 0 ? open : close);
+    for (std::size_t v = 0; v < ref.rest->vertices.size(); ++v)
+      vertices[s].push_back(skinned_vertex(*ref.rest, v, bones));
+  }
+  const auto masked = std::find_if(masked_.begin(), masked_.end(),
+                                   [&](const MaskedMesh& m) { return m.ref == &ref; });
+  d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, Build::Posed,
+                    &d.geometry, &vertices);
+  return d;
+}
+
 EmbreeScene::PosedScene EmbreeScene::shutter_scene(double open, double close, int steps) const {
   const ScopedPhase phase("BVH updates: the shutter's motion");
   std::vector<double> times;
@@ -402,22 +423,7 @@ EmbreeScene::PosedScene EmbreeScene::shutter_scene(double open, double close, in
   scene.time = open, scene.close = close, scene.steps = steps, scene.posed = true;
   scene.deformed.resize(skinned_.size());
   tbb::parallel_for(std::size_t(0), skinned_.size(), [&](std::size_t k) {
-    const MeshRef& ref = meshes_[skinned_[k]];
-    const Part& part = scene_.actors[ref.actor].parts[ref.part];
-    Deformed& d = scene.deformed[k];
-    d.mesh = *ref.rest;
-    skin(*ref.rest, part.bones(times[middle]), d.mesh);
-    // its vertices at the shutter's open and close (a limb turns little over a shutter)
-    StepVertices vertices(2);
-    for (std::size_t s = 0; s < 2; ++s) {
-      const std::vector<Pose> bones = part.bones(s == 0 ? open : close);
-      for (std::size_t v = 0; v < ref.rest->vertices.size(); ++v)
-        vertices[s].push_back(skinned_vertex(*ref.rest, v, bones));
-    }
-    const auto masked = std::find_if(masked_.begin(), masked_.end(),
-                                     [&](const MaskedMesh& m) { return m.ref == &ref; });
-    d.bvh = build_bvh(device_, d.mesh, masked == masked_.end() ? nullptr : &*masked, Build::Posed,
-                      &d.geometry, &vertices);
+    scene.deformed[k] = shutter_deformed(meshes_[skinned_[k]], open, times[middle], close);
   });
   scene.poses.resize(meshes_.size());
   scene.inverses.resize(meshes_.size());

@@ -213,6 +213,7 @@ class EmbreeScene {
     std::vector<std::vector<Pose>> step_poses{};
   };
   PosedScene shutter_scene(double open, double close, int steps) const;
+  Deformed shutter_deformed(const MeshRef& ref, double open, double middle, double close) const;
   PosedScene posed_scene(bool refit_skinned);    // the line scene's skinned BVHs refit
   void use(const PosedScene& scene);             // `now` is `scene`'s
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
