@@ -188,18 +188,26 @@ void compare_colour(Rendered& out) {
       out.floats.push_back(&layer->data);
 }
 
-// The cube faces' path tracing of a frame (their colour layers).
-Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
-                     const RenderOptions& options) {
+// The six faces' colour layers as trace(face's projection, its stats) gives them, timed.
+template <class Trace>
+Rendered traced_faces(int face_size, Trace&& trace) {
   Rendered out;
   const auto start = std::chrono::steady_clock::now();
   for (Face face : kFaces) {
     RenderStats stats;
-    out.colour.push_back(
-        renderer.color_layers(Projection::cube_face(face, face_size), pair, options, &stats));
+    out.colour.push_back(trace(Projection::cube_face(face, face_size), stats));
     out.rays += stats.rays;
   }
   out.seconds = seconds_since(start);
+  return out;
+}
+
+// The cube faces' path tracing of a frame (their colour layers).
+Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
+                     const RenderOptions& options) {
+  Rendered out = traced_faces(face_size, [&](const Projection& face, RenderStats& stats) {
+    return renderer.color_layers(face, pair, options, &stats);
+  });
   compare_colour(out);
   return out;
 }
@@ -208,17 +216,10 @@ Rendered faces_color(Renderer& renderer, int face_size, const FramePair& pair,
 // path tracing, without its depth guide).
 Rendered faces_over_shutter(Renderer& renderer, int face_size, const Sequence& sequence,
                             const Shutter& shutter, const RenderOptions& options) {
-  Rendered out;
-  const auto start = std::chrono::steady_clock::now();
-  for (Face face : kFaces) {
-    RenderStats stats;
-    out.colour.push_back(renderer.color_layers(
-        Projection::cube_face(face, face_size), shutter,
-        [&](double t) { return sequence.city.rig(t); }, {}, options, &stats));
-    out.rays += stats.rays;
-  }
-  out.seconds = seconds_since(start);
-  return out;
+  const CameraTrack rig = [&](double t) { return sequence.city.rig(t); };
+  return traced_faces(face_size, [&](const Projection& face, RenderStats& stats) {
+    return renderer.color_layers(face, shutter, rig, {}, options, &stats);
+  });
 }
 
 // The ground truth of a frame: the ERP's and the six faces'.

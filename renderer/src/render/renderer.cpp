@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -156,16 +157,30 @@ void over_shutter(EmbreeScene& embree, const Projection& projection, const Shutt
   });
 }
 
-// The depth along the camera ray `ray` averaged over kShutterDepthTimes times of the line's
-// shutter where it meets a surface (+infinity where it never does).
-float depth_over_shutter(const EmbreeScene& embree, const ShutterCamera& line, const Vec3& ray) {
-  double sum = 0;
-  int met = 0;
+// A line's camera at the kShutterDepthTimes times the depth guide is cast at, spread over its
+// shutter, and those times as the shutter scene's.
+struct DepthTimes {
+  std::array<Pose, Renderer::kShutterDepthTimes> cameras;
+  std::array<float, Renderer::kShutterDepthTimes> times;
+};
+DepthTimes depth_times(const ShutterCamera& line) {
+  DepthTimes out;
   for (int k = 0; k < Renderer::kShutterDepthTimes; ++k) {
     const double u = (k + 0.5) / Renderer::kShutterDepthTimes;
-    const Pose pose = line.at(u);
+    out.cameras[std::size_t(k)] = line.at(u), out.times[std::size_t(k)] = line.ray_time(u);
+  }
+  return out;
+}
+
+// The depth along the camera ray `ray` averaged over those times where it meets a surface
+// (+infinity where it never does).
+float depth_over_shutter(const EmbreeScene& embree, const DepthTimes& at, const Vec3& ray) {
+  double sum = 0;
+  int met = 0;
+  for (std::size_t k = 0; k < at.cameras.size(); ++k) {
+    const Pose& pose = at.cameras[k];
     const Hit hit =
-        embree.intersect(pose.translation(), (pose.linear() * ray).normalized(), line.ray_time(u));
+        embree.intersect(pose.translation(), (pose.linear() * ray).normalized(), at.times[k]);
     if (hit.found) sum += hit.distance, ++met;
   }
   return met > 0 ? float(sum / met) : std::numeric_limits<float>::infinity();
@@ -194,10 +209,11 @@ Image<float> Renderer::depth(const Projection& projection, const Shutter& shutte
   const EmbreeScene& embree = impl_->embree;
   over_shutter(impl_->embree, projection, shutter, camera, readout,
                [&](const ShutterCamera& line, double, const PixelWindow& window) {
+                 const DepthTimes at = depth_times(line);
                  parallel_pixels(window, [&](int x, int y) {
                    const Vec3 ray = projection.ray(Vec2(x + 0.5, y + 0.5));
                    *depth.pixel(x, y) = ray.isZero() ? std::numeric_limits<float>::quiet_NaN()
-                                                     : depth_over_shutter(embree, line, ray);
+                                                     : depth_over_shutter(embree, at, ray);
                  });
                });
   return depth;
