@@ -50,13 +50,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> parts;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
-  return parts;
-}
-
 // The converged frames of a sequence and their ground truth.
 struct Reference {
   std::vector<GroundTruth> truth;
@@ -179,14 +172,16 @@ int main(int argc, char** argv) {
   const int reference_spp = argc > 2 ? std::atoi(argv[2]) : 512;
   const int frames = argc > 3 ? std::atoi(argv[3]) : 6;
   std::vector<int> windows;
-  for (const std::string& w : split(argc > 4 ? argv[4] : "1,2,3")) windows.push_back(std::stoi(w));
+  for (const std::string& w : comma_separated(argc > 4 ? argv[4] : "1,2,3"))
+    windows.push_back(std::stoi(w));
   const std::vector<std::string> conditions =
-      split(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
+      comma_separated(argc > 5 ? argv[5] : "sunny,cloud,fog,rain,dawn,dusk,night");
   const fs::path scratch = fs::temp_directory_path() / "bench_temporal";
   const std::string figure = argc > 7 ? argv[7] : "";
   const bool cube = argc > 8 && std::string(argv[8]) == "cube";
   std::vector<int> sample_counts;
-  for (const std::string& spp : split(argc > 9 ? argv[9] : std::to_string(ReleaseConfig{}.spp)))
+  for (const std::string& spp :
+       comma_separated(argc > 9 ? argv[9] : std::to_string(ReleaseConfig{}.spp)))
     sample_counts.push_back(std::stoi(spp));
   std::vector<std::vector<Image<std::uint8_t>>> figure_rows;
   // first: the children are forked before this process starts TBB's threads

@@ -1,14 +1,24 @@
 #pragma once
 // What the image-quality benches share: a frame of a sequence with its ground truth and converged
-// reference colour, and the non-sky PSNR of 8-bit sRGB colour against that reference.
+// reference colour, the non-sky PSNR of 8-bit sRGB colour against that reference, and their
+// comma-separated arguments.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "flowscape/release/adaptive_sampling.h"
 #include "flowscape/release/sequence.h"
 
 namespace flowscape {
+
+inline std::vector<std::string> comma_separated(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) parts.push_back(part);
+  return parts;
+}
 
 inline double psnr(const Image<float>& image, const Image<float>& reference,
                    const GroundTruth& truth) {

@@ -164,7 +164,8 @@ TEST_CASE("the options table holds every key of config.json once, each read, wri
   for (const auto& [key, value] : written.items())
     CHECK(std::binary_search(keys.begin(), keys.end(), key));
   nlohmann::json expected = written;  // and the keys added since, at their defaults
-  for (const char* added : {"temporal"}) expected[added] = to_json(ReleaseConfig{})[added];
+  for (const char* added : {"temporal", "edge_spp"})
+    expected[added] = to_json(ReleaseConfig{})[added];
   CHECK(to_json(release_config_from_json(written)) == expected);
   for (const ReleaseOption& option : release_options()) {
     INFO(option.key);
@@ -215,18 +216,36 @@ TEST_CASE("the sequence mix: every third turns, the others drive; free as before
                     Catch::Contains("turn_share must be in 0..1"));
 }
 
-TEST_CASE("a release of flowscape 0.8 (no ego_routes in config.json) resumes as free") {
+namespace {
+
+// A release whose config.json was written by `then` without `keys` (an older flowscape's) resumes
+// with `then`, and a rerun with `now` is refused naming `changed`.
+void check_resumes_as_before(ReleaseConfig then, const std::vector<std::string>& keys,
+                             ReleaseConfig now, const std::string& changed) {
   TempDir dir;
-  ReleaseConfig config;
-  config.maps = 1, config.sequences_per_map = 1, config.frames = 2;
-  config.ego_routes = "free";
-  nlohmann::json old = to_json(config);
-  old.erase("ego_routes"), old.erase("turn_share");
+  then.maps = now.maps = 1, then.sequences_per_map = now.sequences_per_map = 1;
+  then.frames = now.frames = 2;
+  nlohmann::json old = to_json(then);
+  for (const std::string& key : keys) old.erase(key);
   write_text(dir.path / "config.json", old.dump());
-  CHECK_NOTHROW(claim_release(config, dir.path, false));
-  config.ego_routes = "mix";
-  CHECK_THROWS_WITH(claim_release(config, dir.path, false),
-                    Catch::Contains("ego_routes: \"free\" recorded, \"mix\" now"));
+  CHECK_NOTHROW(claim_release(then, dir.path, false));
+  CHECK_THROWS_WITH(claim_release(now, dir.path, false), Catch::Contains(changed));
+}
+
+}  // namespace
+
+TEST_CASE("a release of flowscape 0.8 (no ego_routes in config.json) resumes as free") {
+  ReleaseConfig free;
+  free.ego_routes = "free";
+  check_resumes_as_before(free, {"ego_routes", "turn_share"}, ReleaseConfig{},
+                          "ego_routes: \"free\" recorded, \"mix\" now");
+}
+
+TEST_CASE("a release of flowscape 0.16 (no edge_spp in config.json) resumes without edge samples") {
+  CHECK(ReleaseConfig{}.edge_spp == 32);
+  ReleaseConfig none;
+  none.edge_spp = 0;
+  check_resumes_as_before(none, {"edge_spp"}, ReleaseConfig{}, "edge_spp: 0 recorded, 32 now");
 }
 
 TEST_CASE("adaptive sampling's share is checked, and a release of 0.12 resumes as uniform") {
@@ -235,14 +254,8 @@ TEST_CASE("adaptive sampling's share is checked, and a release of 0.12 resumes a
     CHECK_THROWS_WITH(release_config_from_json({{"adaptive", share}}),
                       Catch::Contains("adaptive must be in 0..1"));
   CHECK(release_config_from_json({{"adaptive", 0}}).adaptive == 0);
-  TempDir dir;
-  ReleaseConfig config;
-  config.maps = 1, config.sequences_per_map = 1, config.frames = 2, config.adaptive = 0;
-  nlohmann::json old = to_json(config);
-  old.erase("adaptive");
-  write_text(dir.path / "config.json", old.dump());
-  CHECK_NOTHROW(claim_release(config, dir.path, false));
-  config.adaptive = 0.25;
-  CHECK_THROWS_WITH(claim_release(config, dir.path, false),
-                    Catch::Contains("adaptive: 0.0 recorded, 0.25 now"));
+  ReleaseConfig adaptive;
+  adaptive.adaptive = 0.25;
+  check_resumes_as_before(ReleaseConfig{}, {"adaptive"}, adaptive,
+                          "adaptive: 0.0 recorded, 0.25 now");
 }

@@ -40,6 +40,23 @@ TEST_CASE("the first 16 samples of a pixel's pair are a (0,4,2)-net: one in ever
     }
 }
 
+TEST_CASE("a pixel's samples after its block (edge samples) fill it out to a (0,5,2)-net") {
+  // 8 samples of a pixel and the 24 edge samples after them: the first 32 points of the same
+  // scrambled Sobol sequence, one in every elementary box of area 1/32
+  for (std::uint64_t key : {3ull, 99ull, 987654321ull}) {
+    const Sampler::PixelKeys keys(key);
+    Vec2 points[32];
+    for (int i = 0; i < 32; ++i) points[i] = Sampler(keys, i, 8).next();
+    for (int columns : {1, 2, 4, 8, 16, 32}) {
+      std::set<std::pair<int, int>> boxes;
+      for (const Vec2& p : points)
+        boxes.insert({int(p.x() * columns), int(p.y() * (32 / columns))});
+      INFO("key " << key << ", " << columns << " columns");
+      CHECK(boxes.size() == 32);
+    }
+  }
+}
+
 namespace {
 
 double correlation(const double* a, const double* b, int n) {

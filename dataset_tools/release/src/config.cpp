@@ -92,7 +92,8 @@ void validate(const ReleaseConfig& c) {
 }
 
 ColorSection color_section(const ReleaseConfig& c) {
-  return {c.spp, c.indirect_spp, c.max_bounces, c.adaptive, c.temporal, c.denoise, c.denoise_model};
+  return {c.spp,      c.indirect_spp, c.edge_spp, c.max_bounces,
+          c.adaptive, c.temporal,     c.denoise,  c.denoise_model};
 }
 
 FinalPassSection final_pass_section(const ReleaseConfig& c) {

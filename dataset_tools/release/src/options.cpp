@@ -254,6 +254,18 @@ const std::vector<ReleaseOption>& release_options() {
        .special = "0: as the denoiser wants",
        .help = "of those, how many gather indirect light (weighted for all; more than --spp: "
                "all; 0: 4 when denoised, all when not)"},
+      {.key = "edge_spp",
+       .field = &C::edge_spp,
+       .section = Section::Render,
+       .flag = "--edge-spp",
+       .min = 0,
+       .max = 65536,
+       .special = "0: none",
+       .help = "where a pixel's samples disagree on the light met before any surface (a lit "
+               "window's, a lamp's, the sky's edge), camera rays up to this many in all gather "
+               "that light alone (at or below --spp: none; releases of flowscape 0.16 and "
+               "before, whose config.json lacks the key, are read with 0)",
+       .absent = 0},
       {.key = "max_bounces",
        .field = &C::max_bounces,
        .section = Section::Render,

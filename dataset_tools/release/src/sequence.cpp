@@ -93,6 +93,7 @@ std::uint64_t Sequence::color_seed(int frame) const {
 RenderOptions Sequence::color_options(const ColorSection& color_settings, int frame) const {
   RenderOptions options{color_settings.spp, color_settings.max_bounces, color_seed(frame)};
   options.indirect_samples = indirect_samples(color_settings);
+  options.edge_samples = color_settings.edge_spp;
   return options;
 }
 

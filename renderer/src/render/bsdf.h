@@ -38,6 +38,9 @@ class Bsdf {
   // Whether the first surface a camera path meets here is not its first surface for the guides
   // (the normal the denoiser reads): a rain streak, a pane it sees through.
   virtual bool see_through() const { return false; }
+  // Whether the light of a camera path stops being 'other' here (the first surface for the
+  // layers): not where it only glows (an emitter) or passes by (a rain streak, a pane).
+  virtual bool ends_other() const { return true; }
 };
 
 const Bsdf& bsdf_of(Material::Kind kind);

@@ -24,6 +24,9 @@ struct PathState {
   double indirect_weight = 1;
   Rgb albedo = Rgb::Zero();
   Vec3 normal = Vec3::Zero();
+  // Whether it met a surface whose light is not 'other' (Bsdf::ends_other); an edge sample
+  // (other_only) stops there: it gathers only the 'other' light before it.
+  bool met_surface = false, other_only = false;
   // The ray's cone for texture filtering (ray cones): width at the origin (m) and spread (rad).
   double width = 0, spread = 0;
   // Whether it has scattered diffusely: its cone is then so wide that a texture filtered over it is

@@ -68,6 +68,10 @@ bool advance(const FrameContext& frame, const Hit& hit, const TexturedLook* look
   const SurfaceEvent event{
       lights,      s,     1e-4 * (1 + s.position.norm()), path.layer == kOther, light_sample,
       lobe_sample, choice};
+  if (event.first && bsdf.ends_other()) {
+    path.met_surface = true;
+    if (path.other_only) return false;
+  }
   if (event.first && !bsdf.see_through()) path.normal += s.smooth;
   const Turn turn = bsdf.interact(event, path, shadow);
   if (turn == Turn::Ends || turn == Turn::PassesThrough) return turn == Turn::PassesThrough;
@@ -211,7 +215,13 @@ struct PixelSamples {
     for (int l = kDirect; l <= kSpecular; ++l)
       squares[l - kDirect] += std::pow(luminance(path.light[l]), 2);
     albedo += path.albedo, normal += path.normal;
+    surface_samples += path.met_surface;
+    const double other = luminance(path.light[kOther]);
+    other_low = std::min(other_low, other), other_high = std::max(other_high, other);
   }
+  // Whether the samples disagree on the 'other' light they met (an emitter's or the sky's edge, a
+  // lamp smaller than the pixel) by more than kEdgeContrast (white is 1).
+  bool on_edge() const { return other_high - other_low > kEdgeContrast; }
   // The means of `samples` into the layers at (x, y), with the variance of each noisy layer's mean.
   void put_means(int samples, ColorLayers& out, int x, int y) const {
     Image<float>* layers[kLayerCount] = {&out.other, &out.direct, &out.indirect, &out.specular};
@@ -235,7 +245,71 @@ struct PixelSamples {
   Rgb squares = Rgb::Zero();  // of the luminance of direct, indirect, specular
   Rgb albedo = Rgb::Zero();
   Vec3 normal = Vec3::Zero();
+  int surface_samples = 0;  // those that met a surface (PathState::met_surface)
+  double other_low = std::numeric_limits<double>::infinity(), other_high = -other_low;
+  static constexpr double kEdgeContrast = 0.05;
 };
+
+// Which pixels are on an edge (PixelSamples::on_edge), over a window grown by a pixel each way
+// within the image: the window's traced pixels from their samples, the others next to them from
+// probes of the same samples (other-only camera paths: the 'other' light a path meets before its
+// first surface is the same whether it goes on or not). So a pixel's edge samples depend on its
+// neighbours' samples as a render of the whole image has them, whatever the call traces (a rolling
+// shutter's line, RenderOptions::pixels).
+struct EdgeMarks {
+  enum State : std::uint8_t { kUnseen, kSmooth, kEdge };
+  EdgeMarks(const PixelWindow& w, const Projection& image)
+      : region{std::max(0, w.x0 - 1), std::max(0, w.y0 - 1), std::min(image.width, w.x1 + 1),
+               std::min(image.height, w.y1 + 1)},
+        state(std::size_t(region.x1 - region.x0) * (region.y1 - region.y0), kUnseen),
+        traced(state.size(), 0),
+        surface_samples(state.size(), 0) {}
+  std::size_t at(int x, int y) const {
+    return std::size_t(y - region.y0) * (region.x1 - region.x0) + (x - region.x0);
+  }
+  void mark(const PixelSamples& pixel, int x, int y) {
+    state[at(x, y)] = pixel.on_edge() ? kEdge : kSmooth;
+    traced[at(x, y)] = 1, surface_samples[at(x, y)] = pixel.surface_samples;
+  }
+  template <class Visit>
+  bool any_next_to(int x, int y, const Visit& visit) const {  // (x, y) and its 8 neighbours
+    for (int v = std::max(y - 1, region.y0); v <= std::min(y + 1, region.y1 - 1); ++v)
+      for (int u = std::max(x - 1, region.x0); u <= std::min(x + 1, region.x1 - 1); ++u)
+        if (visit(at(u, v))) return true;
+    return false;
+  }
+  // An untraced pixel next to a traced one that is not on an edge itself: its state decides.
+  bool needs_probe(int x, int y) const {
+    return !traced[at(x, y)] &&
+           any_next_to(x, y, [&](std::size_t k) { return traced[k] && state[k] == kSmooth; });
+  }
+  // Whether (x, y) or a pixel next to it is on an edge: an emitter smaller than a pixel that none
+  // of its own samples met shows in a neighbour's.
+  bool near_edge(int x, int y) const {
+    return any_next_to(x, y, [&](std::size_t k) { return state[k] == kEdge; });
+  }
+  PixelWindow region;
+  std::vector<std::uint8_t> state, traced;
+  std::vector<int> surface_samples;
+};
+
+// Adds a pixel's edge samples (`edge_other`: the sum of their 'other' light, `edge_surface`: how
+// many met a surface) to its layers of `samples` samples, `surface` of which met a surface. The
+// coverage is decoupled from the shading, as multisample antialiasing does: 'other' becomes the
+// mean of all samples, the surface layers the mean light of the samples that met a surface times
+// the share of all samples that did (a ratio estimator), so their noise at an edge no longer
+// follows the few samples' coverage.
+void add_edge_samples(ColorLayers& out, int x, int y, int samples, int surface, int edges,
+                      const Rgb& edge_other, int edge_surface) {
+  const double all = samples + edges;
+  float* other = out.other.pixel(x, y);
+  for (int c = 0; c < 3; ++c) other[c] = float((other[c] * samples + edge_other[c]) / all);
+  if (surface == 0) return;  // no sample saw the surface's light: it stays unknown (zero)
+  const double coverage = (surface + edge_surface) / all / (double(surface) / samples);
+  for (Image<float>* layer : {&out.direct, &out.indirect, &out.specular, &out.albedo})
+    for (int c = 0; c < 3; ++c) layer->pixel(x, y)[c] *= float(coverage);
+  for (int c = 0; c < 3; ++c) out.variance.pixel(x, y)[c] *= float(coverage * coverage);
+}
 
 // Traces neighbouring pixels of a row together: as many as fill a bundle with all their samples
 // (two at 8 spp), so their camera and first light rays share Embree packets. Each pixel's samples
@@ -246,7 +320,7 @@ struct PixelGroupTracer {
   const Pose& camera;
   const RenderOptions& options;
 
-  void trace(int y, int x0, int x1, ColorLayers& out, std::uint64_t& rays) const {
+  void trace(int y, int x0, int x1, ColorLayers& out, EdgeMarks& marks, std::uint64_t& rays) const {
     const int spp = options.samples_per_pixel;
     std::optional<PixelSamples> group[kBundleSize];
     for (int x = x0; x < x1; ++x)
@@ -270,15 +344,76 @@ struct PixelGroupTracer {
       for (int x = x0; x < x1; ++x)
         for (int i = 0; i < per_pixel; ++i) group[x - x0]->add(paths[lane++]);
     }
-    for (int x = x0; x < x1; ++x) group[x - x0]->put_means(spp, out, x, y);
+    for (int x = x0; x < x1; ++x) {
+      group[x - x0]->put_means(spp, out, x, y);
+      marks.mark(*group[x - x0], x, y);
+    }
+  }
+
+  // Marks the pixels of row y in [x0, x1) by probes of their own samples (EdgeMarks).
+  void probe(int y, int x0, int x1, EdgeMarks& marks, std::uint64_t& rays) const {
+    std::optional<PixelSamples> group[kBundleSize];
+    trace_other_only(group, y, x0, x1, 0, options.samples_per_pixel, rays,
+                     [&](int x, const PathState& path) { group[x - x0]->add(path); });
+    for (int x = x0; x < x1; ++x)
+      marks.state[marks.at(x, y)] =
+          group[x - x0]->on_edge() ? EdgeMarks::kEdge : EdgeMarks::kSmooth;
+  }
+
+  // The edge samples (RenderOptions::edge_samples) of the pixels of row y in [x0, x1): the
+  // samples after each pixel's own, each only as far as its first surface.
+  void trace_edges(int y, int x0, int x1, const EdgeMarks& marks, ColorLayers& out,
+                   std::uint64_t& rays) const {
+    const int spp = options.samples_per_pixel;
+    std::optional<PixelSamples> group[kBundleSize];
+    Rgb other[kBundleSize];
+    int surface[kBundleSize] = {};
+    std::fill(other, other + kBundleSize, Rgb::Zero());
+    trace_other_only(group, y, x0, x1, spp, options.edge_samples, rays,
+                     [&](int x, const PathState& path) {
+                       other[x - x0] += path.light[kOther], surface[x - x0] += path.met_surface;
+                     });
+    for (int x = x0; x < x1; ++x)
+      add_edge_samples(out, x, y, spp, marks.surface_samples[marks.at(x, y)],
+                       options.edge_samples - spp, other[x - x0], surface[x - x0]);
   }
 
  private:
+  // Traces samples [first, last) of each pixel of row y in [x0, x1) (set up in `group`) as
+  // other-only camera paths, a bundle at a time, handing each to take(x, path).
+  template <class Take>
+  void trace_other_only(std::optional<PixelSamples>* group, int y, int x0, int x1, int first,
+                        int last, std::uint64_t& rays, const Take& take) const {
+    Sampler samplers[kBundleSize];
+    PathState paths[kBundleSize];
+    PixelLooks* looks[kBundleSize];
+    int owners[kBundleSize], lane = 0;
+    const auto flush = [&] {
+      naming_pixels(
+          [&] { trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays); },
+          [&](int of) {
+            return std::pair{owners[of], y};
+          });
+      for (int i = 0; i < lane; ++i) take(owners[i], paths[i]);
+      lane = 0;
+    };
+    for (int x = x0; x < x1; ++x) {
+      group[x - x0].emplace(frame, projection, camera, options.seed, x, y);
+      for (int index = first; index < last; ++index) {
+        paths[lane] = {};
+        owners[lane] = x;
+        start(*group[x - x0], index, lane++, samplers, paths, looks, true);
+        if (lane == kBundleSize) flush();
+      }
+    }
+    if (lane > 0) flush();
+  }
   // Sets up sample `index` of `pixel` in bundle lane `lane`.
   void start(PixelSamples& pixel, int index, int lane, Sampler* samplers, PathState* paths,
-             PixelLooks** looks) const {
+             PixelLooks** looks, bool other_only = false) const {
     samplers[lane] = Sampler(pixel.keys, index, options.samples_per_pixel);
     PathState& path = paths[lane];
+    path.other_only = other_only;
     const ShutterCamera* shutter = frame.shutter;
     const double u = shutter ? samplers[lane].time() : 0;
     const Pose sample_camera = shutter ? shutter->at(u) : camera;
@@ -297,13 +432,31 @@ struct PixelGroupTracer {
   }
 };
 
-// RenderOptions::pixels: whether (x, y) is traced, and the first traced pixel of row y from x on.
-bool traced(ImageView<const std::uint8_t> pixels, int x, int y) {
-  return !pixels.data || *pixels.pixel(x, y);
-}
-int next_traced(ImageView<const std::uint8_t> pixels, int y, int x, int end) {
-  while (x < end && !traced(pixels, x, y)) ++x;
-  return x;
+// Calls trace(y, x0, x1, rays) in parallel for the runs of neighbouring pixels of a row of
+// `window` that `wanted(x, y)` picks, at most `longest` long (2-D blocks: a rolling shutter's
+// window is a single line). Returns the rays traced.
+template <class Wanted, class Trace>
+std::uint64_t for_each_run(const PixelWindow& window, int longest, const Wanted& wanted,
+                           const Trace& trace) {
+  std::atomic<std::uint64_t> rays{0};
+  const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
+  tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
+    std::uint64_t block_rays = 0;
+    const int begin = block.cols().begin(), end = block.cols().end();
+    for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+      for (int x = begin; x < end;) {
+        if (!wanted(x, y)) {
+          ++x;
+          continue;
+        }
+        int run_end = x + 1;
+        while (run_end < std::min(x + longest, end) && wanted(run_end, y)) ++run_end;
+        trace(y, x, run_end, block_rays);
+        x = run_end;
+      }
+    rays += block_rays;
+  });
+  return rays;
 }
 
 }  // namespace
@@ -343,25 +496,26 @@ std::uint64_t path_trace(EmbreeScene& embree, const ImageTextures& images, const
                          const Projection& projection, const Pose& camera,
                          const RenderOptions& options, const PixelWindow& window, ColorLayers& out,
                          const ShutterCamera* shutter) {
-  std::atomic<std::uint64_t> rays{0};
   const FrameContext frame{embree, images, lights, options.textures, shutter};
   const PixelGroupTracer tracer{frame, projection, camera, options};
-  const int group_size = std::max(1, kBundleSize / std::max(1, options.samples_per_pixel));
-  // 2-D blocks: a rolling shutter's window is a single line
-  const tbb::blocked_range2d<int> pixels(window.y0, window.y1, window.x0, window.x1);
-  tbb::parallel_for(pixels, [&](const tbb::blocked_range2d<int>& block) {
-    std::uint64_t block_rays = 0;
-    const int end = block.cols().end();
-    for (int y = block.rows().begin(); y < block.rows().end(); ++y)
-      for (int x = next_traced(options.pixels, y, block.cols().begin(), end); x < end;) {
-        int group_end = x + 1;
-        while (group_end < std::min(x + group_size, end) && traced(options.pixels, group_end, y))
-          ++group_end;
-        tracer.trace(y, x, group_end, out, block_rays);
-        x = next_traced(options.pixels, y, group_end, end);
-      }
-    rays += block_rays;
-  });
+  const auto traced = [&](int x, int y) {  // RenderOptions::pixels
+    return !options.pixels.data || *options.pixels.pixel(x, y);
+  };
+  const int spp = options.samples_per_pixel;
+  EdgeMarks marks(window, projection);
+  std::uint64_t rays = for_each_run(
+      window, std::max(1, kBundleSize / std::max(1, spp)), traced,
+      [&](int y, int x0, int x1, std::uint64_t& r) { tracer.trace(y, x0, x1, out, marks, r); });
+  if (options.edge_samples <= spp) return rays;
+  const int longest = std::max(1, kBundleSize / 2);
+  rays += for_each_run(
+      marks.region, longest, [&](int x, int y) { return marks.needs_probe(x, y); },
+      [&](int y, int x0, int x1, std::uint64_t& r) { tracer.probe(y, x0, x1, marks, r); });
+  rays += for_each_run(
+      window, longest, [&](int x, int y) { return traced(x, y) && marks.near_edge(x, y); },
+      [&](int y, int x0, int x1, std::uint64_t& r) {
+        tracer.trace_edges(y, x0, x1, marks, out, r);
+      });
   return rays;
 }
 

@@ -71,10 +71,12 @@ inline std::uint32_t permute(std::uint32_t i, int bits, std::uint32_t key) {
 // Point `index` of a block of 2^bits (bits <= 16), in the order chosen by the bits of `order` and
 // with the scrambles in the bits of `scrambles`. The order is two rounds of the hash: one leaves
 // small blocks' orders visibly related (pairs' correlation over 16 samples: E[r^2] 0.085 where a
-// random order gives 1/15).
+// random order gives 1/15). An index beyond the block takes the Sobol points after it in order, so
+// that extra samples of a pixel (its edge samples) fill the gaps between its block's.
 inline Vec2 point(std::uint32_t index, int bits, std::uint64_t order, std::uint64_t scrambles) {
-  const std::uint32_t shuffled =
-      permute(permute(index, bits, std::uint32_t(order)), bits, std::uint32_t(order >> 32));
+  const std::uint32_t shuffled = index >> bits ? index
+                                               : permute(permute(index, bits, std::uint32_t(order)),
+                                                         bits, std::uint32_t(order >> 32));
   return {owen_scramble(reverse_bits(shuffled), std::uint32_t(scrambles)) * 0x1.0p-32,
           owen_scramble(second_dimension(shuffled), std::uint32_t(scrambles >> 32)) * 0x1.0p-32};
 }

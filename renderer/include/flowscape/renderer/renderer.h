@@ -84,6 +84,11 @@ struct RenderOptions {
   // bounces that gather its indirect light), weighted to stand for all; 0: every sample. The rest
   // still bring the camera ray, the sun's direct light, the specular chains and the features.
   int indirect_samples = 0;
+  // Where a pixel's samples disagree on the light they meet before any surface (the edge of a lit
+  // window, a lamp or the sky), camera rays up to this many in all, which gather only that light
+  // (the coverage); their surface light stays the pixel's samples' (path_tracer.cpp's
+  // PixelSamples::put_means). At or below samples_per_pixel: none.
+  int edge_samples = 32;
   // Where set (the image's size; for render_cube the stacked faces'), only the pixels where it is
   // non-zero are traced and the others' layers stay zero: adaptive sampling's second pass. A
   // pixel's samples are the same as in a render of every pixel.

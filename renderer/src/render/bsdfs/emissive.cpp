@@ -15,6 +15,7 @@ class Emissive final : public Bsdf {
       path.light[path.layer] += path.throughput.cwiseProduct(glow);
     return Turn::Ends;
   }
+  bool ends_other() const override { return false; }
 };
 
 }  // namespace

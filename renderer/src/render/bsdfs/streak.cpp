@@ -14,6 +14,7 @@ class Streak final : public Bsdf {
     return Turn::PassesThrough;
   }
   bool see_through() const override { return true; }
+  bool ends_other() const override { return false; }
 };
 
 }  // namespace

@@ -36,6 +36,7 @@ class Window final : public Bsdf {
     return Turn::PassesThrough;
   }
   bool see_through() const override { return true; }
+  bool ends_other() const override { return false; }
 };
 
 }  // namespace

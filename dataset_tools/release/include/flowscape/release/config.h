@@ -26,6 +26,11 @@ struct ReleaseConfig {
   // indirect_spp 0: chosen by the denoiser (kDenoisedIndirectSpp when denoised, every sample
   // when not: a converged reference, --spp 1024 --denoise none, gathers on every sample).
   int spp = 8, indirect_spp = 0, max_bounces = 4;
+  // Edge samples: where a pixel's samples disagree on the light they meet before any surface (a
+  // lit window's, a lamp's or the sky's edge), camera rays up to edge_spp in all gather that light
+  // alone (RenderOptions::edge_samples); at or below spp: none. 32 brings the night's relative
+  // error at 512 x 1024 from 2.5x the day's to 1.5x (docs/renderer.md, "Edge samples").
+  int edge_spp = 32;
   // Adaptive sampling (release/adaptive_sampling.h): the share of the pixels (0-1) that take half
   // of spp where the denoised colour is estimated worst, the others only the first half; 0 (the
   // default): every pixel spp. Needs spp >= 4 (fewer: uniform). At equal samples 0.25 gains
@@ -131,7 +136,7 @@ void check_sky_resolution(const ReleaseConfig& config);
 // members as ReleaseConfig describes them).
 // How a view's colour is path traced and denoised.
 struct ColorSection {
-  int spp, indirect_spp, max_bounces;
+  int spp, indirect_spp, edge_spp, max_bounces;
   double adaptive;
   int temporal;
   std::string denoise, denoise_model;
