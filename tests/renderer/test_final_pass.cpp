@@ -184,6 +184,7 @@ TEST_CASE("the shutter is centred on the frame; the final pass traces half the s
   const RenderOptions over = shutter_options(clean);
   CHECK(over.samples_per_pixel == 4);
   CHECK(over.indirect_samples == 2);
+  CHECK(over.edge_samples == clean.edge_samples / 2);
   CHECK(over.seed != clean.seed);
   CHECK(shutter_options({1, 4, 3, true, 1}).samples_per_pixel == 1);
   CHECK(shutter_options({1, 4, 3, true, 1}).indirect_samples == 1);

@@ -18,6 +18,7 @@ RenderOptions shutter_options(const RenderOptions& clean) {
   options.samples_per_pixel = std::max(1, clean.samples_per_pixel / 2);
   if (clean.indirect_samples > 0)
     options.indirect_samples = std::max(1, clean.indirect_samples / 2);
+  options.edge_samples = clean.edge_samples / 2;
   options.seed = derived_seed(clean.seed, 0, 8);
   return options;
 }

@@ -11,7 +11,8 @@ namespace flowscape {
 Shutter centred_shutter(double time, double angle, double frame_rate = kFrameRate);
 
 // What the final pass traces over the shutter for a frame the clean pass traced with `clean`:
-// half its samples (and of those gathering indirect light; at least 1 each), its own seed.
+// half its samples (and of those gathering indirect light; at least 1 each), half its edge
+// samples, its own seed.
 RenderOptions shutter_options(const RenderOptions& clean);
 
 // The six cube faces over the shutter (render_cube's layout): their layers and, in truth, no
