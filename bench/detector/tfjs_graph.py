@@ -1,6 +1,6 @@
 """A TensorFlow.js graph model (model.json + weight shards) run with PyTorch on the CPU.
 
-Only the operations the pinned detector uses are known; any other is refused by name. Tensors keep
+Only the operations the pinned detectors use are known; any other is refused by name. Tensors keep
 TensorFlow's NHWC layout between operations; convolutions and pooling switch to torch's NCHW and back.
 """
 import base64
@@ -134,11 +134,40 @@ def _max_pool(attr, x):
     return F.max_pool2d(xc, kernel, strides).permute(0, 2, 3, 1)
 
 
+def _pad(x, paddings, value=0.0):
+    """TF Pad / PadV2: paddings is [rank, 2] (before, after) per axis, first axis first."""
+    flat = []
+    for before, after in reversed(paddings.tolist()):
+        flat += [int(before), int(after)]
+    return F.pad(x, flat, value=float(value))
+
+
+def _sparse_to_dense(indices, shape, values, default):
+    """TF SparseToDense: a tensor of `shape` holding `default`, `values` at `indices`."""
+    size = [int(v) for v in shape.reshape(-1).tolist()]
+    out = torch.full(size, default.item(), dtype=values.dtype)
+    index = indices.long() if indices.dim() == 2 else indices.long().reshape(-1, 1)
+    if index.shape[0]:
+        out[tuple(index.t())] = values.reshape(-1).expand(index.shape[0])
+    return out
+
+
+def _split_v(attr, x, sizes, axis):
+    sizes = [int(v) for v in sizes.tolist()]
+    if -1 in sizes:
+        sizes[sizes.index(-1)] = x.shape[int(axis)] - (sum(sizes) + 1)
+    return list(torch.split(x, sizes, dim=int(axis)))
+
+
 def _run_op(node, ins):
     op, attr = node["op"], node.get("attr", {})
     simple = {
         "Identity": lambda: ins[0], "Relu": lambda: F.relu(ins[0]),
         "Relu6": lambda: ins[0].clamp(0, 6), "Sigmoid": lambda: torch.sigmoid(ins[0]),
+        "LeakyRelu": lambda: F.leaky_relu(ins[0], attr.get("alpha", {}).get("f", 0.2)),
+        "Transpose": lambda: ins[0].permute([int(v) for v in ins[1].tolist()]),
+        "Pad": lambda: _pad(ins[0], ins[1]), "PadV2": lambda: _pad(ins[0], ins[1], ins[2].item()),
+        "SparseToDense": lambda: _sparse_to_dense(*ins),
         "Add": lambda: ins[0] + ins[1], "AddV2": lambda: ins[0] + ins[1],
         "Sub": lambda: ins[0] - ins[1], "Mul": lambda: ins[0] * ins[1],
         "FloorDiv": lambda: torch.div(ins[0], ins[1], rounding_mode="floor"),
@@ -172,6 +201,8 @@ def _run_op(node, ins):
         return [_max_pool(attr, ins[0])]
     if op == "StridedSlice":
         return [_strided_slice(attr, *ins)]
+    if op == "SplitV":
+        return _split_v(attr, *ins)
     if op == "TopKV2":
         values, indices = torch.topk(ins[0], int(ins[1]), sorted=True)
         return [values, indices.to(torch.int32)]
