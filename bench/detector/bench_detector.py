@@ -34,6 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 MIN_PIXELS, MIN_SMALL_PIXELS, MIN_REAL_BOX_AREA, SCORE, IOU = 500, 200, 800, 0.3, 0.5
+LOW_SCORE = 0.15  # detections from here to SCORE only explain misses
 SMALL = 32 * 32  # pixels: "under 32 px square", COCO's small objects
 # COCO ids (0-based, as the model's class channel) of the families scored.
 PERSON, VEHICLE = "person", "vehicle"
@@ -140,9 +141,22 @@ DETECTORS = {"centernet": CenterNet, "nanodet": NanoDet}
 
 def detect(detector, rgb):
     """A detector's detections of the scored families, (family, score, x0, y0, x1, y1) with
-    score >= SCORE, after non-maximum suppression."""
+    score >= LOW_SCORE, after non-maximum suppression: those >= SCORE count, the others only
+    tell why an object was missed."""
     return nms([(COCO_FAMILY[c], s, *box) for c, s, *box in detector(rgb)
-                if s >= SCORE and c in COCO_FAMILY])
+                if s >= LOW_SCORE and c in COCO_FAMILY])
+
+
+def why_missed(obj, all_dets):
+    """Why no detection found `obj`: "under the score" (one of its family with IoU >= 0.5 scores
+    LOW_SCORE to SCORE), "box off" (one scoring >= SCORE overlaps it with IoU 0.2-0.5: a box of
+    the whole vehicle against its visible part, or of two vehicles), else "nothing"."""
+    mine = [d for d in all_dets if d[0] == obj["family"]]
+    if any(iou(d[2:], obj["box"]) >= IOU for d in mine):
+        return "under the score"
+    if any(d[1] >= SCORE and iou(d[2:], obj["box"]) >= 0.2 for d in mine):
+        return "box off"
+    return "nothing"
 
 
 def nms(dets, threshold=0.5):
@@ -174,18 +188,25 @@ class Tally:
     def __init__(self):
         self.objects, self.false, self.images = [], 0, 0
 
-    def add(self, row, found, pixels):
-        self.objects.append((row, bool(found), pixels))
+    def add(self, row, miss, pixels):
+        """miss: None when found, else why_missed's reason."""
+        self.objects.append((row, miss, pixels))
 
-    def recall(self, rows, min_pixels=MIN_PIXELS, max_pixels=None):
-        hits = [found for row, found, pixels in self.objects if row in rows and
+    def misses(self, rows, min_pixels=MIN_PIXELS, max_pixels=None):
+        """The objects of `rows` in the size band: None (found) or why each was missed."""
+        return [miss for row, miss, pixels in self.objects if row in rows and
                 (pixels is None or (pixels >= min_pixels and
                                     (max_pixels is None or pixels < max_pixels)))]
-        return (sum(hits) / len(hits) if hits else float("nan")), len(hits)
+
+    def recall(self, rows, min_pixels=MIN_PIXELS, max_pixels=None):
+        misses = self.misses(rows, min_pixels, max_pixels)
+        found = sum(miss is None for miss in misses)
+        return (found / len(misses) if misses else float("nan")), len(misses)
 
 
-def score_image(dets, objects, tally, class_image=None):
+def score_image(all_dets, objects, tally, class_image=None):
     """objects: dicts with family, row, box (x0, y0, x1, y1, exclusive ends), counted."""
+    dets = [d for d in all_dets if d[1] >= SCORE]
     used = set()
     for obj in sorted((o for o in objects if o["counted"]), key=lambda o: -area(o["box"])):
         best, best_iou = None, IOU
@@ -197,7 +218,8 @@ def score_image(dets, objects, tally, class_image=None):
                 best, best_iou = k, overlap
         if best is not None:
             used.add(best)
-        tally.add(obj["row"], best is not None, obj.get("pixels"))
+        tally.add(obj["row"], None if best is not None else why_missed(obj, all_dets),
+                  obj.get("pixels"))
     for k, d in enumerate(dets):
         if k in used:
             continue
@@ -277,7 +299,8 @@ def score_renders(detectors, folders, faces, drawings=None):
                     dets = detect(detector, rgb)
                     if drawings:
                         image = f"{meta['time_of_day']}_{frame}_{face}.png"
-                        draw(os.path.join(drawings, name, image), rgb, dets, objects)
+                        draw(os.path.join(drawings, name, image), rgb,
+                             [d for d in dets if d[1] >= SCORE], objects)
                     for group in groups + (["side faces"] if face in SIDE_FACES else []):
                         score_image(dets, objects, tallies[name].setdefault(group, Tally()),
                                     semantic)
@@ -345,6 +368,11 @@ def report_detector(name, tallies, real, times):
                 report(f"  {time_of_day} >= 200, kinds", group, kinds, MIN_SMALL_PIXELS,
                        false_positives=False)
         report("  side faces only", tallies["side faces"], families)
+        for label, min_pixels in ((">= 500", MIN_PIXELS), (">= 200", MIN_SMALL_PIXELS)):
+            misses = [m for m in every.misses(VEHICLE_ROWS, min_pixels) if m]
+            reasons = ", ".join(f"{r} {misses.count(r)}"
+                                for r in ("under the score", "box off", "nothing"))
+            print(f"  {'vehicles missed ' + label:<24} {len(misses)}: {reasons}")
     if real:
         report("real street photos", real, [("vehicles", [VEHICLE]), ("pedestrians", [PERSON])])
     if every.images and real:

@@ -89,3 +89,21 @@ def test_gfl_boxes_decode_each_side_at_its_expected_bin():
                 for (cx, cy), (l, t, r, b) in zip(centres, bins)]
     expected[3][0] = 48 - 32 * 2.5
     np.testing.assert_allclose(boxes, expected, atol=1e-4)
+
+
+def test_scoring_counts_misses_by_reason():
+    from bench_detector import VEHICLE, Tally, score_image
+    car = {"family": VEHICLE, "row": "car", "counted": True, "pixels": 900}
+    objects = [dict(car, box=(0, 0, 10, 10)), dict(car, box=(20, 0, 30, 10)),
+               dict(car, box=(40, 0, 50, 10)), dict(car, box=(60, 0, 70, 10)),
+               dict(car, box=(80, 0, 90, 10), pixels=300)]
+    dets = [(VEHICLE, 0.9, 0, 0, 10, 10),     # finds the first (IoU 1)
+            (VEHICLE, 0.2, 20, 0, 30, 10),    # the second's box, scoring under 0.3
+            (VEHICLE, 0.8, 40, 0, 54, 20)]    # the third's IoU 100 / 280: a box off
+    tally = Tally()
+    score_image(dets, objects, tally)
+    assert tally.misses(["car"]) == [None, "under the score", "box off", "nothing"]
+    assert tally.recall(["car"]) == (0.25, 4)
+    assert tally.recall(["car"], 200) == (0.2, 5)
+    assert tally.recall(["car"], 200, 500) == (0.0, 1)
+    assert tally.false == 1  # the box off: 100 of its 280 px inside the third car
