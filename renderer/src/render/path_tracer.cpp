@@ -323,27 +323,8 @@ struct PixelGroupTracer {
   void trace(int y, int x0, int x1, ColorLayers& out, EdgeMarks& marks, std::uint64_t& rays) const {
     const int spp = options.samples_per_pixel;
     std::optional<PixelSamples> group[kBundleSize];
-    for (int x = x0; x < x1; ++x)
-      group[x - x0].emplace(frame, projection, camera, options.seed, x, y);
-    const int chunk = std::min(spp, kBundleSize);
-    for (int first = 0; first < spp; first += chunk) {
-      const int per_pixel = std::min(chunk, spp - first);
-      Sampler samplers[kBundleSize];
-      PathState paths[kBundleSize];
-      PixelLooks* looks[kBundleSize];
-      int lane = 0;
-      for (int x = x0; x < x1; ++x)
-        for (int i = 0; i < per_pixel; ++i, ++lane)
-          start(*group[x - x0], first + i, lane, samplers, paths, looks);
-      naming_pixels(
-          [&] { trace_bundle(frame, looks, paths, samplers, lane, options.max_bounces, rays); },
-          [&](int of) {
-            return std::pair{x0 + of / per_pixel, y};
-          });
-      lane = 0;
-      for (int x = x0; x < x1; ++x)
-        for (int i = 0; i < per_pixel; ++i) group[x - x0]->add(paths[lane++]);
-    }
+    trace_samples(group, y, x0, x1, 0, spp, false, rays,
+                  [&](int x, const PathState& path) { group[x - x0]->add(path); });
     for (int x = x0; x < x1; ++x) {
       group[x - x0]->put_means(spp, out, x, y);
       marks.mark(*group[x - x0], x, y);
@@ -353,8 +334,8 @@ struct PixelGroupTracer {
   // Marks the pixels of row y in [x0, x1) by probes of their own samples (EdgeMarks).
   void probe(int y, int x0, int x1, EdgeMarks& marks, std::uint64_t& rays) const {
     std::optional<PixelSamples> group[kBundleSize];
-    trace_other_only(group, y, x0, x1, 0, options.samples_per_pixel, rays,
-                     [&](int x, const PathState& path) { group[x - x0]->add(path); });
+    trace_samples(group, y, x0, x1, 0, options.samples_per_pixel, true, rays,
+                  [&](int x, const PathState& path) { group[x - x0]->add(path); });
     for (int x = x0; x < x1; ++x)
       marks.state[marks.at(x, y)] =
           group[x - x0]->on_edge() ? EdgeMarks::kEdge : EdgeMarks::kSmooth;
@@ -369,21 +350,22 @@ struct PixelGroupTracer {
     Rgb other[kBundleSize];
     int surface[kBundleSize] = {};
     std::fill(other, other + kBundleSize, Rgb::Zero());
-    trace_other_only(group, y, x0, x1, spp, options.edge_samples, rays,
-                     [&](int x, const PathState& path) {
-                       other[x - x0] += path.light[kOther], surface[x - x0] += path.met_surface;
-                     });
+    trace_samples(group, y, x0, x1, spp, options.edge_samples, true, rays,
+                  [&](int x, const PathState& path) {
+                    other[x - x0] += path.light[kOther], surface[x - x0] += path.met_surface;
+                  });
     for (int x = x0; x < x1; ++x)
       add_edge_samples(out, x, y, spp, marks.surface_samples[marks.at(x, y)],
                        options.edge_samples - spp, other[x - x0], surface[x - x0]);
   }
 
  private:
-  // Traces samples [first, last) of each pixel of row y in [x0, x1) (set up in `group`) as
-  // other-only camera paths, a bundle at a time, handing each to take(x, path).
+  // Traces samples [first, last) of each pixel of row y in [x0, x1) (set up in `group`), whole
+  // or as other-only camera paths, a bundle at a time, pixel after pixel (a pixel's samples in
+  // order), handing each path to take(x, path).
   template <class Take>
-  void trace_other_only(std::optional<PixelSamples>* group, int y, int x0, int x1, int first,
-                        int last, std::uint64_t& rays, const Take& take) const {
+  void trace_samples(std::optional<PixelSamples>* group, int y, int x0, int x1, int first, int last,
+                     bool other_only, std::uint64_t& rays, const Take& take) const {
     Sampler samplers[kBundleSize];
     PathState paths[kBundleSize];
     PixelLooks* looks[kBundleSize];
@@ -402,7 +384,7 @@ struct PixelGroupTracer {
       for (int index = first; index < last; ++index) {
         paths[lane] = {};
         owners[lane] = x;
-        start(*group[x - x0], index, lane++, samplers, paths, looks, true);
+        start(*group[x - x0], index, lane++, samplers, paths, looks, other_only);
         if (lane == kBundleSize) flush();
       }
     }
@@ -410,7 +392,7 @@ struct PixelGroupTracer {
   }
   // Sets up sample `index` of `pixel` in bundle lane `lane`.
   void start(PixelSamples& pixel, int index, int lane, Sampler* samplers, PathState* paths,
-             PixelLooks** looks, bool other_only = false) const {
+             PixelLooks** looks, bool other_only) const {
     samplers[lane] = Sampler(pixel.keys, index, options.samples_per_pixel);
     PathState& path = paths[lane];
     path.other_only = other_only;
