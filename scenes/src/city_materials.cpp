@@ -555,9 +555,10 @@ Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, 
               });
 }
 
-Material clear_glass() {
+Material clear_glass(const Rgb& night_glow) {
   Material m;
   m.kind = Material::Kind::Window, m.albedo = {0.38f, 0.41f, 0.42f}, m.roughness = 0;
+  m.night_emission = night_glow, m.glow_only = true;
   return m;
 }
 

@@ -45,12 +45,10 @@ Material vehicle_glass();
 // Head and tail lights: glossy glass that glows with `night_glow` (sky units, before the exposure)
 // once the lamps are on.
 Material lamp(const Rgb& colour, const Rgb& night_glow = Rgb::Zero());
-Material street_lamp();
+Material street_lamp();  // a street lamp's diffuser: white by day, a warm glow at night
 // A window's glass lit from inside at night (`glow` in sky units before the exposure): by day the
 // same as window_glass.
-Material lit_window(
-    std::uint64_t seed,
-    const Rgb& glow);  // a street lamp's diffuser: white by day, a warm glow at night
+Material lit_window(std::uint64_t seed, const Rgb& glow);
 Material number_plate(std::uint64_t seed);
 Material clothing(std::uint64_t seed, bool trousers);
 Material skin(std::uint64_t seed);
@@ -64,7 +62,9 @@ Rgb cargo_box_colour(std::uint64_t seed);
 Material body_paint(const Rgb& colour, std::uint64_t seed);
 Material banded_paint(const Rgb& colour, const Rgb& band, double z0, double z1, bool checks,
                       std::uint64_t seed);
-Material clear_glass();   // windows you see through (thin, tinted panes)
+// Windows you see through (thin, tinted panes); with `night_glow`, lit from inside once the lamps
+// are on (a bus's cabin), in sky units before the exposure.
+Material clear_glass(const Rgb& night_glow = Rgb::Zero());
 Material trim_plastic();  // black bumpers, pillars, seals
 Material chrome();
 Material upholstery(std::uint64_t seed);

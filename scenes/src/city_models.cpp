@@ -112,11 +112,13 @@ struct ActorLibrary::Impl {
   std::map<std::tuple<int, int, int, int, int, int, int, int, int, int>, PersonModel> people;
   std::map<Livery, std::shared_ptr<const Mesh>> roofs;
   std::map<double, std::uint16_t> tyres;
-  std::uint16_t glass, trim, chrome, head_lamp, tail_lamp, indicator, interior, underbody, grille,
-      eyes, dark_head_lamp, dark_tail_lamp;
+  std::uint16_t glass, bus_glass, trim, chrome, head_lamp, tail_lamp, indicator, interior,
+      underbody, grille, eyes, dark_head_lamp, dark_tail_lamp;
 
   Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
     glass = add_material(scene, cm::clear_glass());
+    // a bus's cabin lit at night (cool-white ceiling lights, as bright as a lit room's window)
+    bus_glass = add_material(scene, cm::clear_glass(Rgb(0.95f, 0.97f, 1.0f) * 3e-4f));
     trim = add_material(scene, cm::trim_plastic());
     chrome = add_material(scene, cm::chrome());
     head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}, Rgb(1, 0.97f, 0.9f) * 0.03f));
@@ -176,7 +178,8 @@ struct ActorLibrary::Impl {
     }
     std::vector<std::uint16_t> slots(kSlotCount, trim);
     slots[kPaint] = add_material(scene, body);
-    slots[kGlass] = glass, slots[kTrim] = trim, slots[kChrome] = chrome;
+    slots[kGlass] = model.family == Family::CityBus ? bus_glass : glass;
+    slots[kTrim] = trim, slots[kChrome] = chrome;
     slots[kHeadLamp] = head_lamp, slots[kTailLamp] = tail_lamp, slots[kIndicator] = indicator;
     slots[kPlate] = add_material(scene, cm::number_plate(random.bits()));
     slots[kInterior] = interior, slots[kUnderbody] = underbody, slots[kGrille] = grille;

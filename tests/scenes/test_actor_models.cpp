@@ -187,6 +187,26 @@ TEST_CASE("riders ride their bikes, and parked vehicles and the ego are actors w
   CHECK(egos == 1);
 }
 
+TEST_CASE("a bus's windows are lit from inside at night, other vehicles' are not") {
+  CityConfig config;
+  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 0;
+  config.duration = 0.2;
+  const City city = make_city(config);
+  int buses = 0, others = 0;
+  for (std::size_t a = 0; a < city.actors.size(); ++a) {
+    const ActorKind kind = city.actors[a].kind;
+    if (kind == ActorKind::Pedestrian || kind == ActorKind::Rider) continue;
+    const Material& glass =
+        city.scene.materials[city.scene.actors[a].parts.front().materials[assets::kGlass]];
+    CHECK(glass.kind == Material::Kind::Window);  // a pane by day, seen through
+    const bool bus = kind == ActorKind::Bus;
+    ++(bus ? buses : others);
+    CHECK(glass.night_emission.isZero() == !bus);  // glows once the lamps are on
+  }
+  CHECK(buses > 0);
+  CHECK(others > 10);
+}
+
 TEST_CASE("no ego vehicle fits cameras inside the car: the rig is refused, naming them") {
   CityConfig config;
   config.map = 0, config.vehicles = 2, config.pedestrians = 0, config.duration = 0.5;
