@@ -19,6 +19,7 @@ family's classes.
 
 usage: bench_detector.py [--set DIR,... | --render DIR [--times day,night]] [--real]
                          [--detectors centernet,nanodet] [--config JSON] [--draw DIR]
+                         [--gallery PNG [--gallery-height 120]]
 """
 import argparse
 import json
@@ -386,6 +387,39 @@ def report_detector(name, tallies, real, times):
               " (target >= 0.85)")
 
 
+GALLERY_MODELS = ("hatchback saloon estate suv pickup van taxi police delivery_van city_bus "
+                  "box_truck lorry motorbike bicycle man woman child umbrella jogger").split()
+GALLERY_VIEWS = ("front", "side", "back", "three-quarter")
+
+
+def score_gallery(detectors, path, height, models=GALLERY_MODELS):
+    """Each model's best score of its family, per view, in `city_preview --actors` gallery (one
+    row of `height` px per model, four views and the semantics across): each tile padded by its
+    own border to three times its size, so the model is as small in the frame as on the street;
+    0 where no detection of its family scores LOW_SCORE or more."""
+    import cv2
+    gallery = cv2.cvtColor(read_png(path)[:, :, :3], cv2.COLOR_BGR2RGB)
+    width = gallery.shape[1] // (len(GALLERY_VIEWS) + 1)
+    if gallery.shape[0] != height * len(models):
+        sys.exit(f"bench_detector: {path}: {gallery.shape[0]} rows, not {len(models)} models of "
+                 f"{height} px")
+    print(f"gallery {path}: best score of the model's family per view "
+          f"({', '.join(GALLERY_VIEWS)})")
+    for row, model in enumerate(models):
+        family = PERSON if model in ("man", "woman", "child", "umbrella", "jogger") else VEHICLE
+        parts = []
+        for name, detector in detectors.items():
+            scores = []
+            for view in range(len(GALLERY_VIEWS)):
+                tile = gallery[row * height:(row + 1) * height, view * width:(view + 1) * width]
+                canvas = cv2.copyMakeBorder(tile, height, height, width, width,
+                                            cv2.BORDER_REPLICATE)
+                scores.append(max((d[1] for d in detect(detector, canvas) if d[0] == family),
+                                  default=0.0))
+            parts.append(f"{name} " + "/".join(f"{v:.2f}" for v in scores))
+        print(f"  {model:<14} " + "  ".join(parts))
+
+
 def render_sets(build, out, times, config):
     """bench_realism_render's fixed set into out/TIME for each time of day; the folders."""
     folders = []
@@ -415,6 +449,9 @@ def main():
                         help="comma-separated: " + ", ".join(DETECTORS))
     parser.add_argument("--faces", default="front,right,back,left,up,down")
     parser.add_argument("--draw", help="write every image with its boxes and detections here")
+    parser.add_argument("--gallery", help="score a `city_preview --actors` gallery PNG per model")
+    parser.add_argument("--gallery-height", type=int, default=120,
+                        help="its --height (each model's row, px)")
     args = parser.parse_args()
     times = args.times.split(",")
     folders = (render_sets(args.build, args.render, times, args.config) if args.render
@@ -425,9 +462,11 @@ def main():
     detectors = {d: DETECTORS[d]() for d in args.detectors.split(",")}
     start = time.time()
     print(f"bench_detector: score >= {SCORE}, IoU >= {IOU}; recall (objects), visible pixels")
+    if args.gallery:
+        score_gallery(detectors, args.gallery, args.gallery_height)
     tallies = score_renders(detectors, folders, args.faces.split(","), args.draw)
     real = os.path.join(HERE, "real_photos.json")
-    for name, detector in detectors.items():
+    for name, detector in detectors.items() if folders or args.real else ():
         report_detector(detector.name, tallies[name],
                         score_real(detector, real) if args.real else None, times)
     print(f"  ({time.time() - start:.0f} s)")
