@@ -183,8 +183,9 @@ def iou(a, b):
 
 
 class Tally:
-    """Per object: its row, visible pixels (None on real photos: counted by box area) and
-    whether a detection found it; and the false positives over the images scored."""
+    """Per object: its row, visible pixels (None on real photos: counted by box area) and None
+    when a detection found it, else why_missed's reason; and the false positives over the images
+    scored."""
 
     def __init__(self):
         self.objects, self.false, self.images = [], 0, 0
@@ -453,13 +454,13 @@ def main():
     parser.add_argument("--gallery-height", type=int, default=120,
                         help="its --height (each model's row, px)")
     args = parser.parse_args()
-    times = args.times.split(",")
-    folders = (render_sets(args.build, args.render, times, args.config) if args.render
-               else args.set.split(",") if args.set else [])
     unknown = [d for d in args.detectors.split(",") if d not in DETECTORS]
     if unknown:
         sys.exit(f"bench_detector: --detectors: unknown {', '.join(unknown)}")
-    detectors = {d: DETECTORS[d]() for d in args.detectors.split(",")}
+    detectors = {d: DETECTORS[d]() for d in args.detectors.split(",")}  # before minutes of render
+    times = args.times.split(",")
+    folders = (render_sets(args.build, args.render, times, args.config) if args.render
+               else args.set.split(",") if args.set else [])
     start = time.time()
     print(f"bench_detector: score >= {SCORE}, IoU >= {IOU}; recall (objects), visible pixels")
     if args.gallery:

@@ -267,8 +267,11 @@ struct EdgeMarks {
   std::size_t at(int x, int y) const {
     return std::size_t(y - region.y0) * (region.x1 - region.x0) + (x - region.x0);
   }
-  void mark(const PixelSamples& pixel, int x, int y) {
+  void mark_state(const PixelSamples& pixel, int x, int y) {
     state[at(x, y)] = pixel.on_edge() ? kEdge : kSmooth;
+  }
+  void mark(const PixelSamples& pixel, int x, int y) {  // a traced pixel
+    mark_state(pixel, x, y);
     traced[at(x, y)] = 1, surface_samples[at(x, y)] = pixel.surface_samples;
   }
   template <class Visit>
@@ -336,9 +339,7 @@ struct PixelGroupTracer {
     std::optional<PixelSamples> group[kBundleSize];
     trace_samples(group, y, x0, x1, 0, options.samples_per_pixel, true, rays,
                   [&](int x, const PathState& path) { group[x - x0]->add(path); });
-    for (int x = x0; x < x1; ++x)
-      marks.state[marks.at(x, y)] =
-          group[x - x0]->on_edge() ? EdgeMarks::kEdge : EdgeMarks::kSmooth;
+    for (int x = x0; x < x1; ++x) marks.mark_state(*group[x - x0], x, y);
   }
 
   // The edge samples (RenderOptions::edge_samples) of the pixels of row y in [x0, x1): the
