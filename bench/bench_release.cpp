@@ -16,8 +16,9 @@
 // max(runs, 1), and whether any image changed.
 // With `runs` > 0, first the same two paths over a fixed sample covering every map, weather and
 // time of day, median of `runs` runs (issue 37's measure; about 8 x frames x 10 s per run).
-// Usage: bench_release [frames = 4] [threads = 2] [runs = 0] [final]
-// ("final": only the clean release against the one with the final pass, and its phases)
+// Usage: bench_release [frames = 4] [threads = 2] [runs = 0] [final | actors]
+// ("final": only the clean release against the one with the final pass, and its phases;
+// "actors": only the legacy actors against the detailed ones, and both's phases)
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -360,6 +361,27 @@ void print_final_pass(const ReleaseConfig& config, const fs::path& out, int sequ
       options.samples_per_pixel, still, moving, 100 * (moving / still - 1), pair_runs);
 }
 
+// The legacy actors (flowscape 0.9's boxes) against the detailed ones, alternating: the detailed
+// actors' cost (and with `phases`, where each's time went).
+void print_actors(const ReleaseConfig& config, const fs::path& out, int sequence_frames,
+                  int pair_runs, bool phases) {
+  ReleaseConfig legacy = config;
+  legacy.actors = "legacy";
+  const auto [boxes_measured, actors_measured] =
+      alternating(legacy, config, out, sequence_frames, pair_runs);
+  const double boxes = boxes_measured.seconds_per_frame, actors = actors_measured.seconds_per_frame;
+  std::printf(
+      "  legacy actors (flowscape 0.9's boxes)    %6.2f s/frame against the detailed actors' %.2f "
+      "(alternating, median of %d): they cost %+.1f %% (target <= +15 %%)\n",
+      boxes, actors, pair_runs, 100 * (actors / boxes - 1));
+  if (phases) {
+    std::printf("  the boxes' phases:\n");
+    print_profile(boxes_measured, config.frames);
+    std::printf("  the detailed actors' phases:\n");
+    print_profile(actors_measured, config.frames);
+  }
+}
+
 int main(int argc, char** argv) {
   const int frames = argc > 1 ? std::atoi(argv[1]) : 4, threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int runs = argc > 3 ? std::atoi(argv[3]) : 0;
@@ -372,6 +394,10 @@ int main(int argc, char** argv) {
   const int pair_runs = std::max(runs, 3);
   if (argc > 4 && std::strcmp(argv[4], "final") == 0) {
     print_final_pass(config, out, sequence_frames, pair_runs, full_frames);
+    return 0;
+  }
+  if (argc > 4 && std::strcmp(argv[4], "actors") == 0) {
+    print_actors(config, out, sequence_frames, pair_runs, true);
     return 0;
   }
   if (runs > 0) print_fixed_sample(config, out, full_frames, sequence_frames, threads, runs);
@@ -395,11 +421,7 @@ int main(int argc, char** argv) {
     ReleaseConfig sampled = config;
     print_render_levers(sampled, fixed_sample(sampled), runs);
   }
-  ReleaseConfig legacy = config;
-  legacy.actors = "legacy";
-  const auto [boxes_measured, actors_measured] =
-      alternating(legacy, config, out, sequence_frames, pair_runs);
-  const double boxes = boxes_measured.seconds_per_frame, actors = actors_measured.seconds_per_frame;
+  print_actors(config, out, sequence_frames, pair_runs, false);
   ReleaseConfig raw = config;
   raw.spp = raw.indirect_spp = 16, raw.denoise = "none";  // every sample indirect
   const double baseline = seconds_per_frame(raw, out, sequence_frames);
@@ -408,10 +430,6 @@ int main(int argc, char** argv) {
               config.spp, indirect_samples(color_section(config)), release, hours(release));
   std::printf("  baseline: 16 spp raw                     %6.2f s/frame  full release %5.2f h\n",
               baseline, hours(baseline));
-  std::printf(
-      "  legacy actors (flowscape 0.9's boxes)    %6.2f s/frame against the detailed actors' %.2f "
-      "(alternating, median of %d): they cost %+.1f %% (target <= +15 %%)\n",
-      boxes, actors, pair_runs, 100 * (actors / boxes - 1));
   std::printf("  %d frames: %.2f h, %.2fx the baseline (target <= 2.7 h on 2 cores)\n", full_frames,
               hours(release), release / baseline);
   print_final_pass(config, out, sequence_frames, pair_runs, full_frames);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
 #include <stdexcept>
 
 #include "flowscape/core/profile.h"
@@ -500,11 +501,39 @@ void EmbreeScene::set_line_time(double t) {
   use(lines_);
 }
 
+namespace {
+
+// Swaps into `slot` a scene of `others` posed at `t` already, if `slot` is not: a sequence's next
+// frame is posed at times its previous frame's targets were (skins rebuilt cost more than a look).
+// Else, with `kept`, one posed at none of those times (the slot is posed again at t).
+template <class PosedScene>
+void reuse_posed(PosedScene& slot, std::span<PosedScene> others, double t,
+                 std::span<const double> kept = {}) {
+  const auto posed_at = [](double time) {
+    return [time](const PosedScene& s) { return s.posed && s.time == time; };
+  };
+  const auto unkept = [&](const PosedScene& s) {
+    return std::none_of(kept.begin(), kept.end(), [&](double k) { return posed_at(k)(s); });
+  };
+  if (posed_at(t)(slot)) return;
+  auto reused = std::find_if(others.begin(), others.end(), posed_at(t));
+  if (reused == others.end() && !unkept(slot))
+    reused = std::find_if(others.begin(), others.end(), unkept);
+  if (reused != others.end()) std::swap(slot, *reused);
+}
+
+}  // namespace
+
 void EmbreeScene::set_times(double now, const std::vector<double>& targets) {
+  while (targets_.size() < targets.size()) targets_.push_back(posed_scene(false));
+  reuse_posed(now_, std::span(targets_), now, std::span(targets));
   pose(now_, now);
   use(now_);
-  while (targets_.size() < targets.size()) targets_.push_back(posed_scene(false));
-  for (std::size_t k = 0; k < targets.size(); ++k) pose(targets_[k], targets[k]);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    reuse_posed(targets_[k], std::span(targets_).subspan(k + 1), targets[k],
+                std::span(targets).subspan(k + 1));
+    pose(targets_[k], targets[k]);
+  }
 }
 
 Vec3 EmbreeScene::point_at_target(int target, const Hit& hit, const Vec3& point) const {
