@@ -52,16 +52,13 @@ bool clear_of(const Mesh& mesh, const V3& p, double clearance) {
 // round and on the ground), every triangle of class `cls`.
 VehicleModel fitted(VehicleModel model, double sx, double shift, double sz, SemanticClass cls) {
   const Eigen::Vector3d scale(sx, 1, sz);
-  for (std::shared_ptr<const Mesh>* mesh : {&model.body, &model.windows}) {
-    if (!*mesh) continue;
-    Mesh moved = **mesh;
-    for (Eigen::Vector3f& v : moved.vertices)
-      v = (v.cast<double>().cwiseProduct(scale) + V3(shift, 0, 0)).cast<float>();
-    for (Eigen::Vector3f& n : moved.normals)
-      n = n.cast<double>().cwiseQuotient(scale).normalized().cast<float>();
-    std::fill(moved.classes.begin(), moved.classes.end(), cls);
-    *mesh = std::make_shared<const Mesh>(std::move(moved));
-  }
+  Mesh moved = *model.body;
+  for (Eigen::Vector3f& v : moved.vertices)
+    v = (v.cast<double>().cwiseProduct(scale) + V3(shift, 0, 0)).cast<float>();
+  for (Eigen::Vector3f& n : moved.normals)
+    n = n.cast<double>().cwiseQuotient(scale).normalized().cast<float>();
+  std::fill(moved.classes.begin(), moved.classes.end(), cls);
+  model.body = std::make_shared<const Mesh>(std::move(moved));
   for (auto& wheel : model.wheels) {
     Mesh relabelled = *wheel;
     std::fill(relabelled.classes.begin(), relabelled.classes.end(), cls);
@@ -313,8 +310,6 @@ std::vector<Actor> ActorLibrary::vehicle_of(Family family, int variant, Livery l
   const VehicleModel& model = lib.vehicle_model(family, variant);
   const std::vector<std::uint16_t> slots = lib.vehicle_slots(model, livery, random.bits());
   actor.parts.push_back({model.body, [](double) { return Pose::Identity(); }, {}, slots});
-  if (model.windows)
-    actor.parts.push_back({model.windows, [](double) { return Pose::Identity(); }, {}, slots});
   lib.add_running_gear(actor, model, slots, track, [](double) { return Pose::Identity(); });
   if (livery == Livery::Taxi || livery == Livery::Police) {
     auto& roof = lib.roofs[livery];
@@ -381,10 +376,8 @@ Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<c
         for (double shift : {0.0, -0.1, 0.1, -0.2, 0.2, -0.3, 0.3}) {
           if (chosen || sz < 0.85) continue;
           VehicleModel candidate = fitted(model, sx, shift, sz, SemanticClass::EgoVehicle);
-          Mesh shell = *candidate.body;
-          if (candidate.windows) append_mesh(shell, *candidate.windows);
           if (std::all_of(seen.begin(), seen.end(),
-                          [&](const V3& c) { return clear_of(shell, c, kEgoClearance); }))
+                          [&](const V3& c) { return clear_of(*candidate.body, c, kEgoClearance); }))
             chosen = std::move(candidate);
         }
     }
@@ -403,12 +396,9 @@ Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<c
   Actor actor{instance, {}, [rig, lowered](double t) { return Pose(rig(t) * lowered); }};
   const std::vector<std::uint16_t> slots =
       lib.vehicle_slots(model, Livery::Plain, derived_seed(lib.seed, instance, 0x65676full));
-  for (const auto& mesh : {model.body, model.windows}) {
-    if (!mesh) continue;
-    Part body{mesh, [](double) { return Pose::Identity(); }, {}, slots};
-    body.on_rig = true;
-    actor.parts.push_back(std::move(body));
-  }
+  Part body{model.body, [](double) { return Pose::Identity(); }, {}, slots};
+  body.on_rig = true;
+  actor.parts.push_back(std::move(body));
   lib.add_running_gear(actor, model, slots, ego, [rig, ego, lowered](double t) {
     return Pose((rig(t) * lowered).inverse() * ego->pose(t));
   });

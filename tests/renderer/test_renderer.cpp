@@ -209,6 +209,57 @@ TEST_CASE("a sunlit diffuse plane has radiance albedo * irradiance * cos / pi") 
     CHECK(centre[c] == Approx(open_sky.environment.sky_zenith[c]).epsilon(0.02));
 }
 
+TEST_CASE("a mesh's window panes: rays see each triangle's own class, the sun passes the panes") {
+  // a 6 m slab 1 m above the rig: window panes over x > 0 (first in the mesh), solid and black
+  // over x < 0; the sun straight above; the road 1.7 m below the rig
+  Scene scene = road_under_black_sky({0.5f, 0.25f, 0.75f});
+  scene.environment.sun_direction = Vec3::UnitZ();
+  Material black, pane;
+  black.albedo = Eigen::Vector3f::Zero();
+  pane.kind = Material::Kind::Window;
+  scene.materials = {scene.materials[0], black, pane};
+  Mesh slab;
+  const auto quad = [&](double x0, double x1, SemanticClass cls, std::uint16_t material) {
+    add_quad(slab, Vec3(x0, -3, 1), Vec3(x1, -3, 1), Vec3(x1, 3, 1), Vec3(x0, 3, 1),
+             {cls, material});
+  };
+  quad(0, 3, SemanticClass::Car, 2);
+  quad(-3, 0, SemanticClass::Truck, 1);
+  Actor actor{3, {}, fixed_pose()};
+  actor.parts.push_back(rigid_part(std::move(slab)));
+  scene.actors.push_back(actor);
+  Renderer renderer(scene);
+  const int size = 16;
+  const Projection up = Projection::cube_face(Face::Up, size);
+  const GroundTruth gt = renderer.ground_truth(up, FramePair{});
+  const Projection down = Projection::cube_face(Face::Down, size);
+  const Image<float> road = renderer.color(down, FramePair{}, {4, 4, 9});
+  int panes = 0, solid = 0, lit = 0, shaded = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const Vec2 centre(x + 0.5, y + 0.5);
+      const double above_x = up.ray(centre).x() / up.ray(centre).z();  // where it meets z = 1
+      CHECK(*gt.instance.pixel(x, y) == 3);
+      CHECK(SemanticClass(*gt.semantic.pixel(x, y)) ==
+            (above_x > 0 ? SemanticClass::Car : SemanticClass::Truck));
+      ++(above_x > 0 ? panes : solid);
+      const Vec3 below = down.ray(centre);
+      const double road_x = below.x() / -below.z() * 1.7;  // where it meets the road
+      if (std::abs(road_x) < 0.15) continue;                // the shadow's edge in the pixel
+      for (int c = 0; c < 3; ++c) {
+        const double expected = road_x > 0 ? scene.materials[0].albedo[c] *
+                                                 scene.environment.sun_irradiance[c] / indep::pi
+                                           : 0.0;
+        CHECK(road.pixel(x, y)[c] == Approx(expected).epsilon(1e-3).margin(1e-6));
+      }
+      ++(road_x > 0 ? lit : shaded);
+    }
+  CHECK(panes > 50);
+  CHECK(solid > 50);
+  CHECK(lit > 50);
+  CHECK(shaded > 50);
+}
+
 TEST_CASE("colour is the same bytes with 1 and 2 threads") {
   const Scene scene = sunlit_street();
   Renderer renderer(scene);

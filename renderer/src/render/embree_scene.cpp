@@ -24,7 +24,8 @@ void coverage_filter(const RTCFilterFunctionNArguments* args) {
   const MeshRef& ref = *masked->ref;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
-    const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    const unsigned primitive = RTCHitN_primID(args->hit, args->N, i);
+    const unsigned triangle = masked->triangles ? (*masked->triangles)[primitive] : primitive;
     const std::uint16_t material = material_of(ref, triangle);
     if ((RTCRayN_mask(args->ray, args->N, i) & kSunMask) &&
         (*masked->materials)[material].kind == Material::Kind::Window) {
@@ -50,22 +51,16 @@ void copy_vertices(const Mesh& mesh, float* vertices) { copy_vertices(mesh.verti
 // shutter's, posed once per line).
 enum class Build { World, Shared, Posed, Refit };
 
-// A BVH of one mesh; with `steps`, of its vertices at each step of a shutter (motion blur).
 using StepVertices = std::vector<std::vector<Eigen::Vector3f>>;
-RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, Build build,
-                   RTCGeometry* geometry_out = nullptr, const StepVertices* steps = nullptr) {
-  RTCScene bvh = rtcNewScene(device);
+
+// A triangle geometry of `mesh` (of the triangles `only` lists, or all), built as `build` says;
+// with `steps`, its vertices at each step of a shutter.
+RTCGeometry triangle_geometry(RTCDevice device, const Mesh& mesh, Build build,
+                              const StepVertices* steps, const std::vector<unsigned>* only) {
   RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   if (build == Build::Posed || build == Build::Refit)
     rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_REFIT);
-  if (build == Build::Refit) {
-    rtcSetSceneFlags(bvh, RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_LOW);
-  }
-  if (build == Build::Shared) {
-    rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_HIGH);
-    rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
-  }
+  if (build == Build::Shared) rtcSetGeometryBuildQuality(geometry, RTC_BUILD_QUALITY_HIGH);
   if (steps) rtcSetGeometryTimeStepCount(geometry, unsigned(steps->size()));
   const std::size_t slots = steps ? steps->size() : 1;
   for (std::size_t slot = 0; slot < slots; ++slot)
@@ -73,20 +68,39 @@ RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked,
                   static_cast<float*>(rtcSetNewGeometryBuffer(
                       geometry, RTC_BUFFER_TYPE_VERTEX, unsigned(slot), RTC_FORMAT_FLOAT3,
                       3 * sizeof(float), mesh.vertices.size())));
-  auto* indices = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                              3 * sizeof(unsigned), mesh.triangles.size()));
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c) indices[3 * t + c] = unsigned(mesh.triangles[t][c]);
-  if (masked) {
-    rtcSetGeometryUserData(geometry, const_cast<MaskedMesh*>(masked));
-    rtcSetGeometryIntersectFilterFunction(geometry, coverage_filter);
-    rtcSetGeometryOccludedFilterFunction(geometry, coverage_filter);
+  const std::size_t count = only ? only->size() : mesh.triangles.size();
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
+  for (std::size_t t = 0; t < count; ++t)
+    for (int c = 0; c < 3; ++c)
+      indices[3 * t + c] = unsigned(mesh.triangles[only ? (*only)[t] : t][c]);
+  return geometry;
+}
+
+// A BVH of one mesh (with `split`, as its two geometries); with `steps`, of its vertices at each
+// step of a shutter (motion blur).
+RTCScene build_bvh(RTCDevice device, const Mesh& mesh, const MaskedMesh* masked, Build build,
+                   RTCGeometry* geometry_out = nullptr, const StepVertices* steps = nullptr,
+                   const PaneSplit* split = nullptr) {
+  RTCScene bvh = rtcNewScene(device);
+  if (build == Build::Refit) {
+    rtcSetSceneFlags(bvh, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_LOW);
   }
-  rtcCommitGeometry(geometry);
-  rtcAttachGeometry(bvh, geometry);
-  if (geometry_out) *geometry_out = geometry;
-  rtcReleaseGeometry(geometry);
+  if (build == Build::Shared) rtcSetSceneBuildQuality(bvh, RTC_BUILD_QUALITY_HIGH);
+  for (int part = 0; part < (split ? 2 : 1); ++part) {
+    const std::vector<unsigned>* only = split ? &split->triangles[part] : nullptr;
+    RTCGeometry geometry = triangle_geometry(device, mesh, build, steps, only);
+    if (masked && (!split || part == 1)) {
+      rtcSetGeometryUserData(geometry, const_cast<MaskedMesh*>(masked));
+      rtcSetGeometryIntersectFilterFunction(geometry, coverage_filter);
+      rtcSetGeometryOccludedFilterFunction(geometry, coverage_filter);
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(bvh, geometry);
+    if (geometry_out) *geometry_out = geometry;
+    rtcReleaseGeometry(geometry);
+  }
   rtcCommitScene(bvh);
   return bvh;
 }
@@ -168,8 +182,15 @@ void fill_packet(const BundleRay* rays, int count, unsigned mask, RTCRay16& pack
   }
 }
 
+// The mesh's triangle that geometry `geometry`'s primitive `primitive` of mesh `mesh`'s BVH is.
+unsigned triangle_of(const std::vector<const PaneSplit*>& splits, unsigned mesh, unsigned geometry,
+                     unsigned primitive) {
+  return splits[mesh] ? splits[mesh]->triangles[geometry][primitive] : primitive;
+}
+
 // Up to kBundleSize rays as one Embree packet, those `mask` lets through.
-void intersect_packet(RTCScene scene, const BundleRay* rays, int count, unsigned mask, Hit* hits) {
+void intersect_packet(RTCScene scene, const std::vector<const PaneSplit*>& splits,
+                      const BundleRay* rays, int count, unsigned mask, Hit* hits) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   alignas(64) RTCRayHit16 packet;
@@ -185,7 +206,7 @@ void intersect_packet(RTCScene scene, const BundleRay* rays, int count, unsigned
                   ? Hit{}
                   : Hit{true,
                         hit.instID[0][i],
-                        hit.primID[i],
+                        triangle_of(splits, hit.instID[0][i], hit.geomID[i], hit.primID[i]),
                         packet.ray.tfar[i],
                         {hit.Ng_x[i], hit.Ng_y[i], hit.Ng_z[i]},
                         hit.u[i],
@@ -276,6 +297,8 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     const bool alpha = coverage && has_alpha_mask(ref, scene.materials),
                masked = alpha || has_window(ref, scene.materials);
     if (masked) masked_.push_back({&ref, alpha ? coverage : nullptr, &scene.materials});
+    const PaneSplit* split = masked && !alpha && ref.skinned < 0 ? pane_split(ref) : nullptr;
+    splits_.push_back(split);
     if (ref.skinned >= 0) {
       bvhs_.push_back(nullptr);
       continue;
@@ -283,15 +306,29 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     // shared by every part showing the mesh (one whose alpha mask depends on its materials: its
     // own; windows are taken to be windows in every part showing a mesh, as the models' are)
     auto& bvh = built[{ref.rest, alpha ? ref.slots : nullptr}];
-    if (!bvh)
+    if (!bvh) {
+      if (split) masked_.back().triangles = &split->triangles[1];
       bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr,
-                      ref.actor < 0 ? Build::World : Build::Shared);
-    else
+                      ref.actor < 0 ? Build::World : Build::Shared, nullptr, nullptr, split);
+    } else {
       rtcRetainScene(bvh);
+    }
     bvhs_.push_back(bvh);
   }
   now_ = posed_scene(false);
   use(now_);
+}
+
+// The mesh's panes apart from its solid triangles (made once per mesh), or null where it has
+// only one kind.
+const PaneSplit* EmbreeScene::pane_split(const MeshRef& ref) {
+  auto [it, fresh] = pane_splits_.try_emplace(ref.rest);
+  PaneSplit& split = it->second;
+  if (fresh)
+    for (unsigned t = 0; t < ref.rest->triangles.size(); ++t)
+      split.triangles[scene_.materials[material_of(ref, t)].kind == Material::Kind::Window]
+          .push_back(t);
+  return split.triangles[0].empty() || split.triangles[1].empty() ? nullptr : &split;
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -587,7 +624,7 @@ Hit EmbreeScene::intersect(const Vec3& origin, const Vec3& direction, float time
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   return {true,
           rh.hit.instID[0],
-          rh.hit.primID,
+          triangle_of(splits_, rh.hit.instID[0], rh.hit.geomID, rh.hit.primID),
           rh.ray.tfar,
           {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z},
           rh.hit.u,
@@ -613,11 +650,11 @@ void EmbreeScene::occluded(int target, const BundleRay* rays, int count, bool* b
 }
 
 void EmbreeScene::intersect(const BundleRay* rays, int count, Hit* hits) const {
-  intersect_packet(current_->top, rays, count, kSceneMask | kColorOnlyMask, hits);
+  intersect_packet(current_->top, splits_, rays, count, kSceneMask | kColorOnlyMask, hits);
 }
 
 void EmbreeScene::intersect_scene(const BundleRay* rays, int count, Hit* hits) const {
-  intersect_packet(current_->top, rays, count, kSceneMask, hits);
+  intersect_packet(current_->top, splits_, rays, count, kSceneMask, hits);
 }
 
 void EmbreeScene::occluded(const BundleRay* rays, int count, bool* blocked) const {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -117,6 +118,14 @@ struct MaskedMesh {
   const MeshRef* ref;
   const CoverageTest* coverage;
   const std::vector<Material>* materials;
+  const std::vector<unsigned>* triangles = nullptr;  // its geometry's primID -> triangle, or null
+};
+
+// A mesh with window panes (and no alpha mask) as two geometries of one BVH: the solid triangles,
+// then the panes, whose filter (sun rays pass them) then runs on panes only; each geometry's
+// primID -> the mesh's triangle.
+struct PaneSplit {
+  std::vector<unsigned> triangles[2];
 };
 
 class EmbreeScene {
@@ -218,18 +227,20 @@ class EmbreeScene {
   void use(const PosedScene& scene);             // `now` is `scene`'s
   bool pose(PosedScene& scene, double t) const;  // false: it was posed at t already
   void release(PosedScene& scene);
-  RTCScene shared_bvh(const MeshRef& ref);
+  const PaneSplit* pane_split(const MeshRef& ref);
 
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   std::vector<MeshRef> meshes_;
-  std::vector<RTCScene> bvhs_;         // per mesh: its shared BVH (null for skinned parts)
-  std::vector<unsigned> skinned_;      // the meshes that are skinned parts
-  std::vector<MaskedMesh> masked_;     // reserved up front: Embree keeps pointers into it
-  PosedScene now_, lines_;             // set_times' and set_line_time's (made when first asked)
-  PosedScene shutter_;                 // set_shutter's (made anew for each shutter)
-  const PosedScene* current_ = &now_;  // `now`: the one rays see
-  std::vector<PosedScene> targets_;    // grown as requests need, never shrunk
+  std::vector<RTCScene> bvhs_;  // per mesh: its shared BVH (null for skinned parts)
+  std::map<const Mesh*, PaneSplit> pane_splits_;
+  std::vector<const PaneSplit*> splits_;  // per mesh: how its BVH splits it, or null
+  std::vector<unsigned> skinned_;         // the meshes that are skinned parts
+  std::vector<MaskedMesh> masked_;        // reserved up front: Embree keeps pointers into it
+  PosedScene now_, lines_;                // set_times' and set_line_time's (made when first asked)
+  PosedScene shutter_;                    // set_shutter's (made anew for each shutter)
+  const PosedScene* current_ = &now_;     // `now`: the one rays see
+  std::vector<PosedScene> targets_;       // grown as requests need, never shrunk
   const CoverageTest* coverage_;
 };
 

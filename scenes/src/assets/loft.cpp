@@ -299,32 +299,6 @@ void append_with_skin(Mesh& mesh, const Mesh& part, const Pose& pose) {
   }
 }
 
-std::pair<Mesh, Mesh> split_by_slot(const Mesh& mesh, std::uint16_t slot) {
-  Mesh parts[2];
-  std::vector<int> index[2] = {std::vector<int>(mesh.vertices.size(), -1),
-                               std::vector<int>(mesh.vertices.size(), -1)};
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const int side = mesh.materials[t] == slot ? 1 : 0;
-    Mesh& out = parts[side];
-    Eigen::Vector3i tri;
-    for (int c = 0; c < 3; ++c) {
-      int& v = index[side][std::size_t(mesh.triangles[t][c])];
-      if (v < 0) {
-        v = int(out.vertices.size());
-        const std::size_t from = std::size_t(mesh.triangles[t][c]);
-        out.vertices.push_back(mesh.vertices[from]);
-        if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[from]);
-        if (!mesh.uvs.empty()) out.uvs.push_back(mesh.uvs[from]);
-      }
-      tri[c] = v;
-    }
-    out.triangles.push_back(tri);
-    out.classes.push_back(mesh.classes[t]);
-    out.materials.push_back(mesh.materials[t]);
-  }
-  return {std::move(parts[0]), std::move(parts[1])};
-}
-
 Closure closure(const Mesh& mesh) {
   std::map<Key, int> positions;
   std::vector<int> id(mesh.vertices.size());

@@ -65,10 +65,6 @@ void add_ellipsoid(Mesh& mesh, const V3& centre, const V3& radii, SemanticClass 
 // but keeping per-vertex skin weights when both have them.
 void append_with_skin(Mesh& mesh, const Mesh& part, const Pose& pose = Pose::Identity());
 
-// The triangles of `mesh` whose material slot is `slot` (second) and the others (first), each a
-// mesh of its own with the vertices it uses.
-std::pair<Mesh, Mesh> split_by_slot(const Mesh& mesh, std::uint16_t slot);
-
 // Whether a closed mesh is watertight (every edge shared by exactly two triangles, once each way)
 // and its signed volume (positive: normals point outward).
 struct Closure {

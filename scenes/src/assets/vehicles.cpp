@@ -104,11 +104,7 @@ VehicleModel finish_car(Family family, const BodyShape& shape, double tyre_width
 }
 
 VehicleModel build_vehicle(Family family, int variant, bool mirrors) {
-  VehicleModel model = kFamilyTable[int(family)].build(family, variant, mirrors);
-  auto [body, windows] = split_by_slot(*model.body, kGlass);
-  model.body = std::make_shared<const Mesh>(std::move(body));
-  if (!windows.triangles.empty()) model.windows = std::make_shared<const Mesh>(std::move(windows));
-  return model;
+  return kFamilyTable[int(family)].build(family, variant, mirrors);
 }
 
 Mesh livery_roof(Livery livery) {

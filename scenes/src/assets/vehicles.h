@@ -52,10 +52,7 @@ struct VehicleModel {
   Family family;
   double length = 0, width = 0, height = 0;  // of the whole vehicle (lorry: tractor + trailer)
   double wheelbase = 0;                      // first to last axle of the (tractor) body
-  std::shared_ptr<const Mesh> body;
-  // The glass of the body, a mesh of its own: only its BVH runs a filter (the sun's rays pass
-  // windows), the body's runs none.
-  std::shared_ptr<const Mesh> windows;
+  std::shared_ptr<const Mesh> body;  // glass included (the renderer's BVH keeps its panes apart)
   std::vector<std::shared_ptr<const Mesh>> wheels;  // [left, right] meshes per wheel size
   std::vector<double> wheel_radius;                 // per wheel mesh
   std::vector<WheelMount> mounts;
