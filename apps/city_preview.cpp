@@ -286,7 +286,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--actors", o.actors,
                "the gallery of built-in actor models instead: one row per model seen from the "
-               "front, side, back and three-quarters, and its semantics, --height pixels high");
+               "front, side, back and three-quarters, and its semantics, --height pixels high; "
+               "with --times-of-day, one row per model and time under the physical sky, a street "
+               "lamp beside it and its lamps on when the release's are");
   app.add_option("--actor-models", o.actor_models,
                  "with --actors: these models only (hatchback saloon estate suv pickup van taxi "
                  "police delivery_van city_bus box_truck lorry motorbike bicycle man woman child "
@@ -311,9 +313,9 @@ int main(int argc, char** argv) {
     o.models = parse_models(models);
     std::vector<std::vector<Image<std::uint8_t>>> sheet;
     if (o.actors) {
-      sheet = actor_gallery({o.height, o.color, o.actor_models});
+      sheet = actor_gallery({o.height, o.color, o.actor_models, 0, o.times_of_day});
       write_image(o.out, contact_sheet(sheet));
-      std::printf("%s: %zu models\n", o.out.c_str(), sheet.size());
+      std::printf("%s: %zu rows\n", o.out.c_str(), sheet.size());
       return 0;
     }
     if (!o.scenario.empty() || !o.from_release.empty()) {

@@ -19,7 +19,8 @@ family's classes.
 
 usage: bench_detector.py [--set DIR,... | --render DIR [--times day,night]] [--real]
                          [--detectors centernet,nanodet] [--config JSON] [--draw DIR]
-                         [--gallery PNG [--gallery-height 120]]
+                         [--gallery PNG [--gallery-height 120] [--gallery-models A,B]
+                          [--gallery-times day,night]]
 """
 import argparse
 import json
@@ -393,20 +394,21 @@ GALLERY_MODELS = ("hatchback saloon estate suv pickup van taxi police delivery_v
 GALLERY_VIEWS = ("front", "side", "back", "three-quarter")
 
 
-def score_gallery(detectors, path, height, models=GALLERY_MODELS):
+def score_gallery(detectors, path, height, models=GALLERY_MODELS, times=("",)):
     """Each model's best score of its family, per view, in `city_preview --actors` gallery (one
-    row of `height` px per model, four views and the semantics across): each tile padded by its
-    own border to three times its size, so the model is as small in the frame as on the street;
-    0 where no detection of its family scores LOW_SCORE or more."""
+    row of `height` px per model and time of day, four views and the semantics across): each tile
+    padded by its own border to three times its size, so the model is as small in the frame as on
+    the street; 0 where no detection of its family scores LOW_SCORE or more."""
     import cv2
     gallery = cv2.cvtColor(read_png(path)[:, :, :3], cv2.COLOR_BGR2RGB)
     width = gallery.shape[1] // (len(GALLERY_VIEWS) + 1)
-    if gallery.shape[0] != height * len(models):
-        sys.exit(f"bench_detector: {path}: {gallery.shape[0]} rows, not {len(models)} models of "
-                 f"{height} px")
+    rows = [(model, when) for model in models for when in times]
+    if gallery.shape[0] != height * len(rows):
+        sys.exit(f"bench_detector: {path}: {gallery.shape[0]} px high, not {len(rows)} rows of "
+                 f"{height} px (--gallery-models x --gallery-times)")
     print(f"gallery {path}: best score of the model's family per view "
           f"({', '.join(GALLERY_VIEWS)})")
-    for row, model in enumerate(models):
+    for row, (model, when) in enumerate(rows):
         family = PERSON if model in ("man", "woman", "child", "umbrella", "jogger") else VEHICLE
         parts = []
         for name, detector in detectors.items():
@@ -418,7 +420,7 @@ def score_gallery(detectors, path, height, models=GALLERY_MODELS):
                 scores.append(max((d[1] for d in detect(detector, canvas) if d[0] == family),
                                   default=0.0))
             parts.append(f"{name} " + "/".join(f"{v:.2f}" for v in scores))
-        print(f"  {model:<14} " + "  ".join(parts))
+        print(f"  {(model + ' ' + when).strip():<20} " + "  ".join(parts))
 
 
 def render_sets(build, out, times, config):
@@ -453,6 +455,10 @@ def main():
     parser.add_argument("--gallery", help="score a `city_preview --actors` gallery PNG per model")
     parser.add_argument("--gallery-height", type=int, default=120,
                         help="its --height (each model's row, px)")
+    parser.add_argument("--gallery-models", default=",".join(GALLERY_MODELS),
+                        help="its --actor-models, comma-separated (default: every model)")
+    parser.add_argument("--gallery-times", default="",
+                        help="its --times-of-day, comma-separated (default: none, sky light)")
     args = parser.parse_args()
     unknown = [d for d in args.detectors.split(",") if d not in DETECTORS]
     if unknown:
@@ -464,7 +470,8 @@ def main():
     start = time.time()
     print(f"bench_detector: score >= {SCORE}, IoU >= {IOU}; recall (objects), visible pixels")
     if args.gallery:
-        score_gallery(detectors, args.gallery, args.gallery_height)
+        score_gallery(detectors, args.gallery, args.gallery_height,
+                      args.gallery_models.split(","), args.gallery_times.split(","))
     tallies = score_renders(detectors, folders, args.faces.split(","), args.draw)
     real = os.path.join(HERE, "real_photos.json")
     for name, detector in detectors.items() if folders or args.real else ():

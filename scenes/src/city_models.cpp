@@ -109,7 +109,7 @@ struct ActorLibrary::Impl {
   std::map<std::tuple<int, int, int, int, int, int, int, int, int, int>, PersonModel> people;
   std::map<Livery, std::shared_ptr<const Mesh>> roofs;
   std::map<double, std::uint16_t> tyres;
-  std::uint16_t glass, bus_glass, trim, chrome, head_lamp, tail_lamp, indicator, interior,
+  std::uint16_t glass, bus_glass, trim, chrome, head_lamp, tail_lamp, indicator, marker, interior,
       underbody, grille, eyes, dark_head_lamp, dark_tail_lamp;
 
   Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
@@ -121,6 +121,7 @@ struct ActorLibrary::Impl {
     head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}, Rgb(1, 0.97f, 0.9f) * 0.03f));
     tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}, {0.003f, 1e-5f, 1e-5f}));
     indicator = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}, {0, 0, 0}));
+    marker = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}, Rgb(1, 0.45f, 0.04f) * 0.003f));
     dark_head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}));
     dark_tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}));
     interior = add_material(scene, cm::upholstery(seed));
@@ -178,6 +179,7 @@ struct ActorLibrary::Impl {
     slots[kGlass] = model.family == Family::CityBus ? bus_glass : glass;
     slots[kTrim] = trim, slots[kChrome] = chrome;
     slots[kHeadLamp] = head_lamp, slots[kTailLamp] = tail_lamp, slots[kIndicator] = indicator;
+    slots[kMarker] = marker;
     slots[kPlate] = add_material(scene, cm::number_plate(random.bits()));
     slots[kInterior] = interior, slots[kUnderbody] = underbody, slots[kGrille] = grille;
     slots[kTyre] = tyre(model.family == Family::Bicycle ? 0.036 : 0.25);

@@ -80,7 +80,8 @@ Showcase showcase(const std::string& name, int variant) {
                                         straight(name == "jogger" ? 3.2 : 1.3, 1.0),
                                         name == "jogger" ? 3.2 : 1.3)};
   if (scene.actors.empty()) throw std::invalid_argument("no built-in model \"" + name + "\"");
-  for (const Actor& actor : scene.actors) {  // a two-wheeler with its rider
+  scene.lamps = library.head_lamps(scene.actors.front(), 0);  // shining once the lamps are on
+  for (const Actor& actor : scene.actors) {                   // a two-wheeler with its rider
     const Box3 box = actor_box(actor, 1.0);
     out.length = std::max(out.length, box.size.x());
     out.height = std::max(out.height, box.pose.translation().z() + box.size.z() / 2);

@@ -205,6 +205,57 @@ TEST_CASE("a bus's windows are lit from inside at night, other vehicles' are not
   CHECK(others > 10);
 }
 
+// The centres of `mesh`'s triangles drawn with `slot`.
+std::vector<Vec3> slot_centres(const Mesh& mesh, Slot slot) {
+  std::vector<Vec3> centres;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (mesh.materials[t] == slot) {
+      Vec3 c = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) c += mesh.vertices[mesh.triangles[t][k]].cast<double>() / 3;
+      centres.push_back(c);
+    }
+  return centres;
+}
+
+TEST_CASE("trucks carry amber side markers at most 3 m apart, lit at night; bicycles a rear lamp") {
+  for (Family family : {Family::BoxTruck, Family::Lorry}) {
+    const VehicleModel model = build_vehicle(family, 0, true);
+    const Mesh& cargo = family == Family::Lorry ? *model.trailer : *model.body;
+    double rear = 0;
+    for (const Eigen::Vector3f& v : cargo.vertices) rear = std::min(rear, double(v.x()));
+    for (double side : {-1.0, 1.0}) {
+      std::set<double> along;  // the markers' x on this side, a lamp's triangles merged
+      for (const Vec3& c : slot_centres(cargo, kMarker))
+        if (c.y() * side > 1.2) along.insert(std::round(c.x() * 10) / 10);
+      CAPTURE(family_name(family), side);
+      REQUIRE(along.size() >= 3);
+      CHECK(*along.begin() - rear < 1.0);
+      for (auto x = along.begin(); std::next(x) != along.end(); ++x)
+        CHECK(*std::next(x) - *x <= 3.0);
+    }
+  }
+  // a bicycle's rear lamp: behind the seat post, below the saddle
+  const VehicleModel bicycle = build_vehicle(Family::Bicycle, 0, true);
+  const std::vector<Vec3> rear_lamp = slot_centres(*bicycle.body, kTailLamp);
+  REQUIRE(!rear_lamp.empty());
+  for (const Vec3& c : rear_lamp) CHECK((c.x() < -0.15 && c.z() > 0.7 && c.z() < 1.0));
+  CityConfig config;
+  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 0;
+  config.duration = 0.2;
+  const City city = make_city(config);
+  int trucks = 0;
+  for (std::size_t a = 0; a < city.actors.size(); ++a) {
+    const ActorKind kind = city.actors[a].kind;
+    if (kind != ActorKind::Truck && kind != ActorKind::Lorry) continue;
+    ++trucks;
+    const Eigen::Vector3f glow =
+        city.scene.materials[city.scene.actors[a].parts.front().materials[kMarker]].night_emission;
+    CHECK((glow.x() > glow.y() && glow.y() > glow.z() && glow.z() >= 0));  // amber
+    CHECK(glow.x() > 0);
+  }
+  CHECK(trucks > 0);
+}
+
 TEST_CASE("no ego vehicle fits cameras inside the car: the rig is refused, naming them") {
   CityConfig config;
   config.map = 0, config.vehicles = 2, config.pedestrians = 0, config.duration = 0.5;

@@ -129,6 +129,27 @@ void cargo_box(Mesh& mesh, double back, double front, double half_width, double 
           V3(back, side * y + 0.02, top - 0.1), kChrome, 0.01);
 }
 
+// A cargo box's marker lamps (UN R48): amber side markers along its lower edge (`low`) at most
+// 3 m apart, and its outline lamps at the top corners, ahead in the marker slot and red behind.
+void marker_lamps(Mesh& mesh, double back, double front, double half_width, double low,
+                  double top) {
+  const int gaps = int(std::ceil((front - back - 0.4) / 2.8));
+  const double y = half_width + 0.04;
+  for (int k = 0; k <= gaps; ++k) {
+    const double x = back + 0.2 + (front - back - 0.4) * k / gaps;
+    for (double side : {-1.0, 1.0})
+      box(mesh, V3(x - 0.05, side * y - 0.015, low - 0.03),
+          V3(x + 0.05, side * y + 0.015, low + 0.03), kMarker, 0.01);
+  }
+  for (double side : {-1.0, 1.0}) {
+    const double corner = side * (half_width - 0.15);
+    box(mesh, V3(front, corner - 0.06, top - 0.12), V3(front + 0.03, corner + 0.06, top - 0.05),
+        kMarker, 0.01);
+    box(mesh, V3(back - 0.03, corner - 0.06, top - 0.12), V3(back, corner + 0.06, top - 0.05),
+        kTailLamp, 0.01);
+  }
+}
+
 Mesh translated(const Mesh& mesh, double x) {
   Mesh out;
   append_mesh(out, mesh, at(x, 0, 0));
@@ -151,6 +172,7 @@ VehicleModel box_truck(int variant) {
   Mesh body = translated(vehicle_body(s), a - cab / 2);
   const double box_top = random.uniform(3.4, 3.7);
   cargo_box(body, -a, a - cab - 0.1, 1.24, 1.1, box_top);
+  marker_lamps(body, -a, a - cab - 0.1, 1.24, 1.17, box_top);
   box(body, V3(-a + 0.4, -0.5, 0.7), V3(a - cab + 0.2, 0.5, 1.1), kUnderbody);  // chassis
   for (double side : {-1.0, 1.0})  // side guards between the axles
     box(body, V3(rear_axle + 0.7, side * 1.17 - 0.02, 0.45),
@@ -197,6 +219,7 @@ VehicleModel lorry(int variant) {
   Mesh trailer;
   const double front = 1.5, back = -12.1;
   cargo_box(trailer, back, front, 1.27, 0.0, 2.8);
+  marker_lamps(trailer, back, front, 1.27, 0.07, 2.8);
   box(trailer, V3(back + 0.3, -0.55, -0.35), V3(front - 0.3, 0.55, 0.0), kUnderbody);
   for (double side : {-1.0, 1.0}) {
     box(trailer, V3(-1.2, side * 0.9 - 0.06, -1.05), V3(-1.05, side * 0.9 + 0.06, -0.35), kTrim);

@@ -48,6 +48,9 @@ VehicleModel bicycle(int variant) {
   tube(frame, seat, saddle, 0.013, kChrome);
   add_rounded_box(frame, Pose(Eigen::Translation3d(saddle + V3(0, 0, 0.03))),
                   V3(0.13, 0.065, 0.025), 0.02, C::Bicycle, kTrim, 2);
+  // a red rear lamp on the seat post (lit at night, as the law asks)
+  add_rounded_box(frame, Pose(Eigen::Translation3d(seat + V3(-0.045, 0, 0.03))),
+                  V3(0.015, 0.025, 0.035), 0.008, C::Bicycle, kTailLamp, 1);
   const V3 bar = head_top + V3(0.07, 0, 0.1);
   tube(frame, head_top, bar, 0.014, kChrome);
   tube(frame, bar + V3(0, -0.22, 0), bar + V3(0, 0.22, 0), 0.012, kTrim);

@@ -29,6 +29,7 @@ enum Slot : std::uint16_t {
   kGrille,
   kLivery,  // a second colour: taxi signs, police stripes, a delivery van's band
   kSkin,    // riders and drivers (people.h)
+  kMarker,  // a truck's marker lamps: amber along its sides, at the front top corners
   kSlotCount
 };
 

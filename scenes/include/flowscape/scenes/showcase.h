@@ -17,8 +17,9 @@ struct Showcase {
   Scene scene;                    // the model is actor 0 (instance 1), a rider actor 1
   double length = 0, height = 0;  // of the model's box at time 0
 };
-// The model `name` (variant 0-2) at the origin facing +x: vehicles standing, people walking past
-// the origin at time 1 s (a jogger running). Throws std::invalid_argument for an unknown name.
+// The model `name` (variant 0-2) at the origin facing +x: vehicles standing (their head lamps'
+// beams in Scene::lamps), people walking past the origin at time 1 s (a jogger running). Throws
+// std::invalid_argument for an unknown name.
 Showcase showcase(const std::string& name, int variant);
 
 }  // namespace flowscape
