@@ -3,10 +3,10 @@
 // each of the 8 maps (the release's first sequence of the map, its seed, ego route and traffic),
 // the release's weather mix spread over the 8 (sunny x5, cloud, fog, rain), the six cube faces of
 // two frames as the release renders them (colour denoised, sRGB), each with its instance and
-// semantic image, and actors.json (every instance's kind and class). A config.json (the
-// gen_flowscape config keys) changes what the release would change (actor models, class table...);
-// the set is by day unless its `times_of_day` says otherwise (cycled over the maps, like the
-// weathers).
+// semantic image, and actors.json (every instance's kind, class and built-in family). A config.json
+// (the gen_flowscape config keys) changes what the release would change (actor models, class
+// table...); the set is by day unless its `times_of_day` says otherwise (cycled over the maps, like
+// the weathers).
 #include <tbb/parallel_for.h>
 
 #include <cstdio>
@@ -48,7 +48,9 @@ nlohmann::json actor_list(const Sequence& sequence) {
     const Actor& actor = sequence.city.scene.actors[a];
     if (actor.color_only) continue;
     const std::string kind = a < records.size() ? kind_name(records[a].kind) : "other";
-    actors[std::to_string(actor.instance)] = {{"kind", kind}, {"class", int(actor_class(actor))}};
+    nlohmann::json& record = actors[std::to_string(actor.instance)];
+    record = {{"kind", kind}, {"class", int(actor_class(actor))}};
+    if (a < records.size() && !records[a].family.empty()) record["family"] = records[a].family;
   }
   return actors;
 }

@@ -48,7 +48,7 @@ KIND_ROW = {"car": (VEHICLE, "car"), "truck": (VEHICLE, "truck"), "lorry": (VEHI
             "bus": (VEHICLE, "bus"), "bike": (VEHICLE, "bicycle"),
             "motorbike": (VEHICLE, "motorbike"), "parked": (VEHICLE, "parked"),
             "pedestrian": (PERSON, "pedestrian"), "rider": (PERSON, "rider")}
-VEHICLE_ROWS = ["car", "truck", "lorry", "bus", "bicycle", "motorbike", "parked"]
+VEHICLE_ROWS = ["car", "van", "truck", "lorry", "bus", "bicycle", "motorbike", "parked"]
 
 
 def cache_dir(variable, name):
@@ -256,6 +256,8 @@ def render_objects(instance, actors):
         ys, xs = np.nonzero(instance == i)
         box = (xs.min(), ys.min(), xs.max() + 1, ys.max() + 1)
         family, row = KIND_ROW[record["kind"]]
+        if row == "car" and record.get("family") == "van":  # a van: a car kind of its own family
+            row = "van"
         touches = box[0] == 0 or box[1] == 0 or box[2] == w or box[3] == h
         objects.append({"family": family, "row": row, "box": box, "pixels": int(n),
                         "counted": n >= MIN_SMALL_PIXELS and not touches and not record.get("ego")})

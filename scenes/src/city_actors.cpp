@@ -135,9 +135,9 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
           record, city);
       return;
     }
-    add_actors(
-        library.vehicle(kind, record.instance, std::move(track), user_model_of(models, kind)),
-        record, city);
+    const Mesh* user_model = user_model_of(models, kind);
+    if (!user_model) record.family = library.family(kind, record.instance);
+    add_actors(library.vehicle(kind, record.instance, std::move(track), user_model), record, city);
   };
   std::vector<const ScriptedActor*> placed;  // in spawn order
   for (const ScriptedActor& actor : config.scripted)
@@ -153,9 +153,9 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     }
     record.scripted = true;
     std::optional<Mesh> own;
-    add_actors(library.vehicle(kind, record.instance, track,
-                               scripted_model(*placed[v - 1], models, own, city.scene)),
-               record, city);
+    const Mesh* model = scripted_model(*placed[v - 1], models, own, city.scene);
+    if (!model) record.family = library.family(kind, record.instance);
+    add_actors(library.vehicle(kind, record.instance, track, model), record, city);
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
@@ -202,6 +202,8 @@ void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& 
     const Mesh* model = scripted_model(scripted, models, own, city.scene);
     ActorRecord record{std::uint16_t(city.scene.actors.size() + 1), scripted.kind, -1, 0, speed};
     record.scripted = true;
+    if (!model && scripted.kind != ActorKind::Pedestrian)
+      record.family = library.family(scripted.kind, record.instance);
     add_actors(
         scripted.kind == ActorKind::Pedestrian
             ? std::vector<Actor>{library.pedestrian(record.instance, track, speed, false, model)}

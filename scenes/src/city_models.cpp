@@ -110,7 +110,7 @@ struct ActorLibrary::Impl {
   std::map<Livery, std::shared_ptr<const Mesh>> roofs;
   std::map<double, std::uint16_t> tyres;
   std::uint16_t glass, bus_glass, trim, chrome, head_lamp, tail_lamp, indicator, marker, interior,
-      underbody, grille, eyes, dark_head_lamp, dark_tail_lamp;
+      underbody, grille, eyes, dark_head_lamp, dark_tail_lamp, dark_marker;
 
   Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
     glass = add_material(scene, cm::clear_glass());
@@ -124,6 +124,7 @@ struct ActorLibrary::Impl {
     marker = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}, Rgb(1, 0.45f, 0.04f) * 0.003f));
     dark_head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}));
     dark_tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}));
+    dark_marker = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}));
     interior = add_material(scene, cm::upholstery(seed));
     underbody = add_material(scene, cm::underbody());
     grille = add_material(scene, cm::grille());
@@ -290,6 +291,22 @@ ActorLibrary::ActorLibrary(Scene& scene, std::uint64_t seed, bool wet)
     : impl_(std::make_unique<Impl>(scene, seed, wet)) {}
 ActorLibrary::~ActorLibrary() = default;
 
+namespace {
+
+// What a built-in vehicle of `kind` shows, drawn from the city's seed and its instance.
+struct DrawnVehicle {
+  Family family;
+  Livery livery;
+  int variant;
+};
+DrawnVehicle draw_vehicle(std::uint64_t seed, ActorKind kind, std::uint16_t instance) {
+  Random random(derived_seed(seed, instance, 0x76656869636c65ull));  // "vehicle"
+  const auto [family, livery] = family_of(kind, random);
+  return {family, livery, random.below(kVariants)};
+}
+
+}  // namespace
+
 std::vector<Actor> ActorLibrary::vehicle(ActorKind kind, std::uint16_t instance,
                                          std::shared_ptr<const Track> track,
                                          const Mesh* user_model) {
@@ -298,9 +315,12 @@ std::vector<Actor> ActorLibrary::vehicle(ActorKind kind, std::uint16_t instance,
     actor.parts.push_back(rigid_part(*user_model));
     return {std::move(actor)};
   }
-  Random random(derived_seed(impl_->seed, instance, 0x76656869636c65ull));  // "vehicle"
-  const auto [family, livery] = family_of(kind, random);
-  return vehicle_of(family, random.below(kVariants), livery, instance, std::move(track));
+  const DrawnVehicle drawn = draw_vehicle(impl_->seed, kind, instance);
+  return vehicle_of(drawn.family, drawn.variant, drawn.livery, instance, std::move(track));
+}
+
+std::string ActorLibrary::family(ActorKind kind, std::uint16_t instance) const {
+  return family_name(draw_vehicle(impl_->seed, kind, instance).family);
 }
 
 std::vector<Actor> ActorLibrary::vehicle_of(Family family, int variant, Livery livery,
@@ -465,6 +485,7 @@ void ActorLibrary::switch_off_lamps(Actor& vehicle) const {
     for (std::uint16_t& material : part.materials) {
       if (material == impl_->head_lamp) material = impl_->dark_head_lamp;
       if (material == impl_->tail_lamp) material = impl_->dark_tail_lamp;
+      if (material == impl_->marker) material = impl_->dark_marker;
     }
 }
 

@@ -40,6 +40,8 @@ class ActorLibrary {
   // (instance + 1) after it; `user_model` replaces the built-in body (no rider then).
   std::vector<Actor> vehicle(ActorKind kind, std::uint16_t instance,
                              std::shared_ptr<const Track> track, const Mesh* user_model);
+  // The family name (assets::family_name) vehicle() shows without a user model.
+  std::string family(ActorKind kind, std::uint16_t instance) const;
   Actor pedestrian(std::uint16_t instance, std::shared_ptr<const Track> track, double speed,
                    bool child, const Mesh* user_model);
   // The same with the family, variant and livery (a person's look) given: galleries and tests.

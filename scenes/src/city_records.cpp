@@ -99,6 +99,7 @@ nlohmann::json to_json(const City& city) {
     if (a.ego) record["ego"] = true;
     if (a.scripted) record["scripted"] = true;
     if (!a.model.empty()) record["model"] = a.model;
+    if (!a.family.empty()) record["family"] = a.family;
     actors.push_back(record);
   }
   const StartPoint& ego = city.ego_spawn;

@@ -53,6 +53,26 @@ std::size_t largest(const std::vector<Mesh>& parts) {
   return best;
 }
 
+// Map 0 with `vehicles` and `pedestrians` for `duration` seconds, from `seed`.
+City map0_city(std::uint64_t seed, int vehicles, int pedestrians, double duration) {
+  CityConfig config;
+  config.map = 0, config.seed = seed, config.vehicles = vehicles, config.pedestrians = pedestrians;
+  config.duration = duration;
+  return make_city(config);
+}
+
+// The centres of `mesh`'s triangles drawn with `slot`.
+std::vector<Vec3> slot_centres(const Mesh& mesh, Slot slot) {
+  std::vector<Vec3> centres;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    if (mesh.materials[t] == slot) {
+      Vec3 c = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) c += mesh.vertices[mesh.triangles[t][k]].cast<double>() / 3;
+      centres.push_back(c);
+    }
+  return centres;
+}
+
 }  // namespace
 
 TEST_CASE("every vehicle's shell and wheels are closed and face outwards") {
@@ -143,10 +163,7 @@ TEST_CASE("a walking foot does not slide while it bears weight, and the leg reac
 }
 
 TEST_CASE("riders ride their bikes, and parked vehicles and the ego are actors with boxes") {
-  CityConfig config;
-  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 30;
-  config.duration = 2;
-  const City city = make_city(config);
+  const City city = map0_city(4, 60, 30, 2);
   REQUIRE(city.actors.size() == city.scene.actors.size());
   int riders = 0, parked = 0, egos = 0;
   for (std::size_t a = 0; a < city.actors.size(); ++a) {
@@ -186,10 +203,7 @@ TEST_CASE("riders ride their bikes, and parked vehicles and the ego are actors w
 }
 
 TEST_CASE("a bus's windows are lit from inside at night, other vehicles' are not") {
-  CityConfig config;
-  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 0;
-  config.duration = 0.2;
-  const City city = make_city(config);
+  const City city = map0_city(4, 60, 0, 0.2);
   int buses = 0, others = 0;
   for (std::size_t a = 0; a < city.actors.size(); ++a) {
     const ActorKind kind = city.actors[a].kind;
@@ -203,18 +217,6 @@ TEST_CASE("a bus's windows are lit from inside at night, other vehicles' are not
   }
   CHECK(buses > 0);
   CHECK(others > 10);
-}
-
-// The centres of `mesh`'s triangles drawn with `slot`.
-std::vector<Vec3> slot_centres(const Mesh& mesh, Slot slot) {
-  std::vector<Vec3> centres;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-    if (mesh.materials[t] == slot) {
-      Vec3 c = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) c += mesh.vertices[mesh.triangles[t][k]].cast<double>() / 3;
-      centres.push_back(c);
-    }
-  return centres;
 }
 
 TEST_CASE("trucks carry amber side markers at most 3 m apart, lit at night; bicycles a rear lamp") {
@@ -239,10 +241,7 @@ TEST_CASE("trucks carry amber side markers at most 3 m apart, lit at night; bicy
   const std::vector<Vec3> rear_lamp = slot_centres(*bicycle.body, kTailLamp);
   REQUIRE(!rear_lamp.empty());
   for (const Vec3& c : rear_lamp) CHECK((c.x() < -0.15 && c.z() > 0.7 && c.z() < 1.0));
-  CityConfig config;
-  config.map = 0, config.seed = 4, config.vehicles = 60, config.pedestrians = 0;
-  config.duration = 0.2;
-  const City city = make_city(config);
+  const City city = map0_city(4, 60, 0, 0.2);
   int trucks = 0;
   for (std::size_t a = 0; a < city.actors.size(); ++a) {
     const ActorKind kind = city.actors[a].kind;
@@ -254,6 +253,43 @@ TEST_CASE("trucks carry amber side markers at most 3 m apart, lit at night; bicy
     CHECK(glow.x() > 0);
   }
   CHECK(trucks > 0);
+}
+
+TEST_CASE("each built-in vehicle's record names the family whose model it shows") {
+  const City city = map0_city(5, 80, 6, 0.2);
+  std::map<std::string, ActorKind> kind_of;  // each family's traffic kind
+  for (int f = 0; f < kFamilies; ++f) {
+    const std::string name = family_name(Family(f));
+    kind_of[name] = name == "city_bus"    ? ActorKind::Bus
+                    : name == "box_truck" ? ActorKind::Truck
+                    : name == "lorry"     ? ActorKind::Lorry
+                    : name == "motorbike" ? ActorKind::Motorbike
+                    : name == "bicycle"   ? ActorKind::Bike
+                                          : ActorKind::Car;
+  }
+  std::set<std::string> seen;
+  for (std::size_t a = 0; a < city.actors.size(); ++a) {
+    const ActorRecord& record = city.actors[a];
+    const bool built_in_vehicle =
+        record.kind != ActorKind::Pedestrian && record.kind != ActorKind::Rider && !record.ego;
+    CHECK(record.family.empty() == !built_in_vehicle);
+    if (!built_in_vehicle) continue;
+    REQUIRE(kind_of.count(record.family) == 1);
+    CHECK(kind_of[record.family] == record.kind);
+    // the actor is as long as one of its family's variants (a lorry's trailer swings: 1 m)
+    const Box3 box = actor_box(city.scene.actors[a], 0);
+    bool fits = false;
+    for (int f = 0; f < kFamilies; ++f)
+      if (family_name(Family(f)) == record.family)
+        for (int variant = 0; variant < kVariants; ++variant)
+          fits = fits || std::abs(box.size.x() - build_vehicle(Family(f), variant).length) <
+                             (record.kind == ActorKind::Lorry ? 1.0 : 0.12);
+    CAPTURE(record.family, box.size.x());
+    CHECK(fits);
+    seen.insert(record.family);
+  }
+  CHECK(seen.count("van") == 1);
+  CHECK(seen.size() >= 6);
 }
 
 TEST_CASE("no ego vehicle fits cameras inside the car: the rig is refused, naming them") {

@@ -333,6 +333,7 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
       if (of.parked) record["parked"] = true;
       if (of.ego) record["ego"] = true;
       if (of.scripted) record["scripted"] = true;
+      if (!of.family.empty()) record["family"] = of.family;
       if (!of.model.empty()) {
         record["model"] = of.model;
         record["licence"] = pack_licence(s.city.config, of.model);

@@ -128,6 +128,9 @@ struct ActorRecord {
   double s, speed;
   bool parked = false, ego = false, scripted = false;
   std::string model = "";  // an asset pack's model ("torcs/p406"), or empty: a built-in one
+  // The built-in vehicle family it shows ("van", "city_bus", ...), or empty: a person, a user's
+  // or a pack's model, the ego, a legacy box.
+  std::string family = "";
 };
 
 // How the camera rig sits on the ego, drawn per city seed (per sequence in a release): its height
