@@ -245,7 +245,7 @@ TEST_CASE("a mesh's window panes: rays see each triangle's own class, the sun pa
       ++(above_x > 0 ? panes : solid);
       const Vec3 below = down.ray(centre);
       const double road_x = below.x() / -below.z() * 1.7;  // where it meets the road
-      if (std::abs(road_x) < 0.15) continue;                // the shadow's edge in the pixel
+      if (std::abs(road_x) < 0.15) continue;               // the shadow's edge in the pixel
       for (int c = 0; c < 3; ++c) {
         const double expected = road_x > 0 ? scene.materials[0].albedo[c] *
                                                  scene.environment.sun_irradiance[c] / indep::pi
@@ -258,6 +258,38 @@ TEST_CASE("a mesh's window panes: rays see each triangle's own class, the sun pa
   CHECK(solid > 50);
   CHECK(lit > 50);
   CHECK(shaded > 50);
+}
+
+TEST_CASE("parts sharing a mesh see its triangles through the BVH its first part split") {
+  // one slab mesh (window-pane slot first, then a solid slot), shown by a far actor whose slots
+  // make the pane a window (its BVH split in two) and by one above the rig whose slots do not:
+  // the second's hits still name their own triangles
+  Scene scene = road_under_black_sky({0.5f, 0.5f, 0.5f});
+  Material pane;
+  pane.kind = Material::Kind::Window;
+  scene.materials.push_back(pane);  // 1
+  Mesh slab;
+  add_quad(slab, Vec3(0, -3, 1), Vec3(3, -3, 1), Vec3(3, 3, 1), Vec3(0, 3, 1),
+           {SemanticClass::Car, 1});
+  add_quad(slab, Vec3(-3, -3, 1), Vec3(0, -3, 1), Vec3(0, 3, 1), Vec3(-3, 3, 1),
+           {SemanticClass::Truck, 0});
+  const auto mesh = std::make_shared<const Mesh>(std::move(slab));
+  for (const auto& [instance, height, pane_slot] :
+       {std::tuple{std::uint16_t(2), 100.0, std::uint16_t(1)}, {std::uint16_t(3), 0.0, 0}}) {
+    Actor actor{instance, {}, fixed_pose(Pose(Eigen::Translation3d(0, 0, height)))};
+    actor.parts.push_back({mesh, fixed_pose(), {}, {0, pane_slot}});
+    scene.actors.push_back(actor);
+  }
+  Renderer renderer(scene);
+  const Projection up = Projection::cube_face(Face::Up, 16);
+  const GroundTruth gt = renderer.ground_truth(up, FramePair{});
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const Vec3 ray = up.ray(Vec2(x + 0.5, y + 0.5));
+      CHECK(*gt.instance.pixel(x, y) == 3);
+      CHECK(SemanticClass(*gt.semantic.pixel(x, y)) ==
+            (ray.x() > 0 ? SemanticClass::Car : SemanticClass::Truck));
+    }
 }
 
 TEST_CASE("colour is the same bytes with 1 and 2 threads") {

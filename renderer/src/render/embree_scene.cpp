@@ -286,7 +286,10 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
       meshes_.push_back(ref);
     }
   masked_.reserve(meshes_.size());
-  std::map<std::pair<const Mesh*, const std::vector<std::uint16_t>*>, RTCScene> built;
+  // each BVH, with how it splits its mesh (every part showing it maps its hits so)
+  std::map<std::pair<const Mesh*, const std::vector<std::uint16_t>*>,
+           std::pair<RTCScene, const PaneSplit*>>
+      built;
   for (MeshRef& ref : meshes_) {
     require_valid_mesh(*ref.rest, mesh_name(ref));
     require_valid_materials(ref, scene.materials.size(), mesh_name(ref));
@@ -297,37 +300,34 @@ EmbreeScene::EmbreeScene(const Scene& scene, const CoverageTest* coverage)
     const bool alpha = coverage && has_alpha_mask(ref, scene.materials),
                masked = alpha || has_window(ref, scene.materials);
     if (masked) masked_.push_back({&ref, alpha ? coverage : nullptr, &scene.materials});
-    const PaneSplit* split = masked && !alpha && ref.skinned < 0 ? pane_split(ref) : nullptr;
-    splits_.push_back(split);
     if (ref.skinned >= 0) {
-      bvhs_.push_back(nullptr);
+      bvhs_.push_back(nullptr), splits_.push_back(nullptr);
       continue;
     }
     // shared by every part showing the mesh (one whose alpha mask depends on its materials: its
     // own; windows are taken to be windows in every part showing a mesh, as the models' are)
-    auto& bvh = built[{ref.rest, alpha ? ref.slots : nullptr}];
+    auto& [bvh, split] = built[{ref.rest, alpha ? ref.slots : nullptr}];
     if (!bvh) {
+      split = masked && !alpha ? pane_split(ref) : nullptr;
       if (split) masked_.back().triangles = &split->triangles[1];
       bvh = build_bvh(device_, *ref.rest, masked ? &masked_.back() : nullptr,
                       ref.actor < 0 ? Build::World : Build::Shared, nullptr, nullptr, split);
     } else {
       rtcRetainScene(bvh);
     }
-    bvhs_.push_back(bvh);
+    bvhs_.push_back(bvh), splits_.push_back(split);
   }
   now_ = posed_scene(false);
   use(now_);
 }
 
-// The mesh's panes apart from its solid triangles (made once per mesh), or null where it has
-// only one kind.
+// The mesh's panes (as `ref` draws them) apart from its solid triangles, or null where it has only
+// one kind; made once per mesh, when its BVH is built.
 const PaneSplit* EmbreeScene::pane_split(const MeshRef& ref) {
-  auto [it, fresh] = pane_splits_.try_emplace(ref.rest);
-  PaneSplit& split = it->second;
-  if (fresh)
-    for (unsigned t = 0; t < ref.rest->triangles.size(); ++t)
-      split.triangles[scene_.materials[material_of(ref, t)].kind == Material::Kind::Window]
-          .push_back(t);
+  PaneSplit& split = pane_splits_[ref.rest];
+  for (unsigned t = 0; t < ref.rest->triangles.size(); ++t)
+    split.triangles[scene_.materials[material_of(ref, t)].kind == Material::Kind::Window].push_back(
+        t);
   return split.triangles[0].empty() || split.triangles[1].empty() ? nullptr : &split;
 }
 

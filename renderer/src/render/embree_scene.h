@@ -234,7 +234,7 @@ class EmbreeScene {
   std::vector<MeshRef> meshes_;
   std::vector<RTCScene> bvhs_;  // per mesh: its shared BVH (null for skinned parts)
   std::map<const Mesh*, PaneSplit> pane_splits_;
-  std::vector<const PaneSplit*> splits_;  // per mesh: how its BVH splits it, or null
+  std::vector<const PaneSplit*> splits_;  // per mesh: how its (shared) BVH splits it, or null
   std::vector<unsigned> skinned_;         // the meshes that are skinned parts
   std::vector<MaskedMesh> masked_;        // reserved up front: Embree keeps pointers into it
   PosedScene now_, lines_;                // set_times' and set_line_time's (made when first asked)
