@@ -29,7 +29,7 @@ namespace {
 
 struct Options {
   std::string out = "city_maps.png", gltf_dir;
-  int height = 160, vehicles = 120, pedestrians = 80, ego_start = 37;
+  int height = 160, vehicles = 120, pedestrians = -1, standing = -1, ego_start = 37;
   ReleaseConfig color;  // spp, indirect_spp, denoise: as a release renders colour
   std::uint64_t seed = 0;
   double time = 1.0;
@@ -66,7 +66,9 @@ SequenceSpec preview_spec(const Options& o, const ReleaseConfig& config, int map
                           const std::string& weather, int frames) {
   SequenceSpec spec;
   CityConfig& city = spec.city;
-  city.map = map, city.seed = o.seed, city.vehicles = o.vehicles, city.pedestrians = o.pedestrians;
+  const StreetLife people = people_on_foot(map, o.vehicles, o.pedestrians, o.standing);
+  city.map = map, city.seed = o.seed, city.vehicles = o.vehicles;
+  city.pedestrians = people.walking, city.standing = people.standing;
   city.ego_start = o.ego_start, city.ego_route = EgoRoute::Free, city.models = o.models;
   set_actors(spec, config);
   spec.weather = weather, spec.frames = frames;
@@ -249,7 +251,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--seed", o.seed, "sequence seed (city, traffic, weather variant, noise)");
   app.add_option("--vehicles", o.vehicles, "vehicles per map")->check(CLI::Range(0, 200));
-  app.add_option("--pedestrians", o.pedestrians, "pedestrians per map")->check(CLI::Range(0, 200));
+  app.add_option("--pedestrians", o.pedestrians, "people walking per map (-1: the map's own)")
+      ->check(CLI::Range(-1, 200));
+  app.add_option("--standing", o.standing, "people standing per map (-1: the map's own)")
+      ->check(CLI::Range(-1, 200));
   app.add_option("--ego-start", o.ego_start, "start point of the ego vehicle (0-99)")
       ->check(CLI::Range(0, 99));
   app.add_option("--time", o.time, "seconds into the sequence (rounded to a frame)")

@@ -2,7 +2,7 @@
 distortion augmentations (FDA-R, FDA-E), panoramic crops and shifts, photometric jitter, and
 EPE evaluation. Heavy per-pixel work runs in C++ (the `flowscape_native` extension built with the
 toolkit) when it is importable, in numpy otherwise; both give the same results."""
-__version__ = "0.19.0"  # the toolkit's (CMakeLists.txt project version, pyproject.toml)
+__version__ = "0.20.0"  # the toolkit's (CMakeLists.txt project version, pyproject.toml)
 
 from .io import read_flo, read_flow, write_flo, read_image, native_available
 from .dataset import FlowScape, Concat, pole_mask

@@ -22,15 +22,17 @@ SCHEMA = 1
 
 
 def scenario(map="downtown", seed=0, rig="flowscape", route="drive", waypoints=None,
-             pose_file=None, pose_format="tum", poses_of="rig", vehicles=120, pedestrians=80,
-             weather="sunny", time_of_day="day", sky="physical", frames=100, name="scenario",
-             ego="auto", frame_rate=30, lane_change_at=None, world_file=None, actors=None):
+             pose_file=None, pose_format="tum", poses_of="rig", vehicles=120, pedestrians=-1,
+             standing=-1, weather="sunny", time_of_day="day", sky="physical", frames=100,
+             name="scenario", ego="auto", frame_rate=30, lane_change_at=None, world_file=None,
+             actors=None):
     """A scenario dict. The motion is the ego's `route` (drive, turn, lane_change, free;
     `lane_change_at` seconds for lane_change) unless `waypoints` (a list of dicts: position, time
     or speed, optional yaw_pitch_roll_degrees) or a `pose_file` (tum, kitti, colmap; its poses
     the rig's or a camera's, `poses_of`) gives the rig its own. `world_file` is a dict (file,
     units, up, classes: docs/scenarios.md) in place of the map, with no traffic; `actors` a list
-    of dicts (kind, waypoints, optional model) placed one by one."""
+    of dicts (kind, waypoints, optional model) placed one by one. `pedestrians` walk, `standing`
+    stand on the pavements; -1: the map's own (docs/scenes.md)."""
     if waypoints is not None:
         motion = {"waypoints": list(waypoints)}
     elif pose_file is not None:
@@ -40,10 +42,10 @@ def scenario(map="downtown", seed=0, rig="flowscape", route="drive", waypoints=N
         if lane_change_at is not None:
             motion["lane_change_at"] = lane_change_at
     world = {"map": map, "seed": seed}
-    traffic = {"vehicles": vehicles, "pedestrians": pedestrians}
+    traffic = {"vehicles": vehicles, "pedestrians": pedestrians, "standing": standing}
     if world_file is not None:
         world = dict(world_file, file=os.path.abspath(world_file["file"]), seed=seed)
-        traffic = {"vehicles": 0, "pedestrians": 0}
+        traffic = {"vehicles": 0, "pedestrians": 0, "standing": 0}
     out = {"flowscape_scenario": SCHEMA, "name": name, "world": world, "rig": rig, "ego": ego,
            "motion": motion, "traffic": traffic, "weather": weather, "time_of_day": time_of_day,
            "sky": sky, "frames": frames, "frame_rate": frame_rate}

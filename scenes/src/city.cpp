@@ -8,6 +8,7 @@
 #include "city_spawn.h"
 #include "city_world.h"
 #include "flowscape/scenes/model_io.h"
+#include "standing.h"
 #include "traffic.h"
 
 namespace flowscape {
@@ -59,12 +60,16 @@ City make_city(const CityConfig& config) {
   city.ego = [ego](double t) { return ego->pose(t); };
   city.ego_distance = [ego](double t) { return ego->distance_at(t); };
   city.mount = random_mount(config.seed);
+  const std::vector<StandingPerson> standing =
+      place_standing(*layout, traffic.tracks, config.standing, config.seed, config.wet);
   if (legacy) {
     add_legacy_actors(traffic, models, traffic.random, city);
+    add_legacy_standing(standing, models, traffic.random, city);
     return city;
   }
   ActorLibrary library(city.scene, config.seed, config.wet);
   add_detailed_actors(traffic, models, parked, library, city);
+  add_standing(standing, models, library, city);
   add_scripted_actors(models, library, city);
   add_head_lamps(library, city);
   return city;

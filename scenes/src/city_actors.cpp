@@ -77,6 +77,13 @@ void add_actors(std::vector<Actor> actors, ActorRecord record, City& city) {
   }
 }
 
+// A vehicle with its record: `model`, or (none) the built-in family the library draws for it.
+void add_vehicle(ActorLibrary& library, ActorKind kind, std::shared_ptr<const Track> track,
+                 const Mesh* model, ActorRecord record, City& city) {
+  if (!model) record.family = library.family(kind, record.instance);
+  add_actors(library.vehicle(kind, record.instance, std::move(track), model), record, city);
+}
+
 // A scripted actor's model: its own file's (loaded into `own`), else the release's for its kind
 // (or none: the built-in one).
 const Mesh* scripted_model(const ScriptedActor& actor, const std::map<ActorKind, Mesh>& models,
@@ -135,9 +142,7 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
           record, city);
       return;
     }
-    const Mesh* user_model = user_model_of(models, kind);
-    if (!user_model) record.family = library.family(kind, record.instance);
-    add_actors(library.vehicle(kind, record.instance, std::move(track), user_model), record, city);
+    add_vehicle(library, kind, std::move(track), user_model_of(models, kind), record, city);
   };
   std::vector<const ScriptedActor*> placed;  // in spawn order
   for (const ScriptedActor& actor : config.scripted)
@@ -153,9 +158,8 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     }
     record.scripted = true;
     std::optional<Mesh> own;
-    const Mesh* model = scripted_model(*placed[v - 1], models, own, city.scene);
-    if (!model) record.family = library.family(kind, record.instance);
-    add_actors(library.vehicle(kind, record.instance, track, model), record, city);
+    add_vehicle(library, kind, track, scripted_model(*placed[v - 1], models, own, city.scene),
+                record, city);
   }
   for (std::size_t w = 0; w < spawned.walkers.size(); ++w) {
     const WalkerStart& start = spawned.walkers[w];
@@ -190,6 +194,42 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
   }
 }
 
+namespace {
+
+// A standing person's record and track: where it stands, all the sequence.
+ActorRecord standing_record(const City& city) {
+  ActorRecord record{std::uint16_t(city.scene.actors.size() + 1), ActorKind::Pedestrian, -1, 0, 0};
+  record.standing = true;
+  return record;
+}
+
+std::shared_ptr<const Track> still_track(const Pose& pose) {
+  return std::make_shared<const Track>(Track{1, {pose}, {0}});
+}
+
+}  // namespace
+
+void add_legacy_standing(const std::vector<StandingPerson>& people,
+                         const std::map<ActorKind, Mesh>& models, Random& random, City& city) {
+  for (const StandingPerson& person : people) {
+    const ActorRecord record = standing_record(city);
+    city.scene.actors.push_back(
+        legacy_actor(ActorKind::Pedestrian, record.instance, still_track(person.pose),
+                     user_model_of(models, ActorKind::Pedestrian), random, city.scene));
+    city.actors.push_back(record);
+  }
+}
+
+void add_standing(const std::vector<StandingPerson>& people,
+                  const std::map<ActorKind, Mesh>& models, ActorLibrary& library, City& city) {
+  for (const StandingPerson& person : people) {
+    const ActorRecord record = standing_record(city);
+    add_actors({library.standing_person(record.instance, person.pose, person.child,
+                                        user_model_of(models, ActorKind::Pedestrian))},
+               record, city);
+  }
+}
+
 void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& library,
                          City& city) {
   for (const ScriptedActor& scripted : city.config.scripted) {
@@ -202,13 +242,10 @@ void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& 
     const Mesh* model = scripted_model(scripted, models, own, city.scene);
     ActorRecord record{std::uint16_t(city.scene.actors.size() + 1), scripted.kind, -1, 0, speed};
     record.scripted = true;
-    if (!model && scripted.kind != ActorKind::Pedestrian)
-      record.family = library.family(scripted.kind, record.instance);
-    add_actors(
-        scripted.kind == ActorKind::Pedestrian
-            ? std::vector<Actor>{library.pedestrian(record.instance, track, speed, false, model)}
-            : library.vehicle(scripted.kind, record.instance, track, model),
-        record, city);
+    if (scripted.kind == ActorKind::Pedestrian)
+      add_actors({library.pedestrian(record.instance, track, speed, false, model)}, record, city);
+    else
+      add_vehicle(library, scripted.kind, track, model, record, city);
   }
 }
 

@@ -7,6 +7,7 @@
 
 #include "city_models.h"
 #include "city_spawn.h"
+#include "standing.h"
 
 namespace flowscape {
 
@@ -22,6 +23,12 @@ void add_legacy_actors(const PlacedTraffic& traffic, const std::map<ActorKind, M
 // groups a child), the parked cars and the ego vehicle, instances in that order.
 void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind, Mesh>& models,
                          const std::vector<Pose>& parked, ActorLibrary& library, City& city);
+// The people standing (place_standing), after the actors above: legacy boxes from `random`, or
+// detailed people (standing still, their weight shifting, their heads turning).
+void add_legacy_standing(const std::vector<StandingPerson>& people,
+                         const std::map<ActorKind, Mesh>& models, Random& random, City& city);
+void add_standing(const std::vector<StandingPerson>& people,
+                  const std::map<ActorKind, Mesh>& models, ActorLibrary& library, City& city);
 // The actors scripted by waypoints (CityConfig::scripted), after all others, each with its rider if
 // it has one.
 void add_scripted_actors(const std::map<ActorKind, Mesh>& models, ActorLibrary& library,

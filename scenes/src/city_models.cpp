@@ -438,13 +438,24 @@ Actor ActorLibrary::pedestrian(std::uint16_t instance, std::shared_ptr<const Tra
   return person_of(random_look(random, child, impl_->wet), instance, std::move(track), speed);
 }
 
+Actor ActorLibrary::standing_person(std::uint16_t instance, const Pose& pose, bool child,
+                                    const Mesh* user_model) {
+  auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
+  if (user_model) return pedestrian(instance, std::move(still), 0, child, user_model);
+  Random random(derived_seed(impl_->seed, instance, 0x706572736f6eull));  // "person"
+  return person_of(random_look(random, child, impl_->wet), instance, std::move(still), 0,
+                   assets::kStandingPhase);
+}
+
 Actor ActorLibrary::person_of(const Look& look, std::uint16_t instance,
-                              std::shared_ptr<const Track> track, double speed) {
+                              std::shared_ptr<const Track> track, double speed,
+                              std::optional<double> gait_phase) {
   Impl& lib = *impl_;
   const std::uint64_t id = derived_seed(lib.seed, instance, 0x636c6f74686573ull);  // "clothes"
   Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
   const PersonModel& person = lib.person_model(look, SemanticClass::Pedestrian);
-  const Gait gait = gait_for(person.skeleton, speed, id, look.umbrella);
+  Gait gait = gait_for(person.skeleton, speed, id, look.umbrella);
+  if (gait_phase) gait.phase = *gait_phase;
   actor.parts.push_back({person.mesh, [](double) { return Pose::Identity(); },
                          walking(person, track, gait), lib.person_slots(look, id)});
   return actor;

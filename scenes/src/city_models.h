@@ -5,6 +5,7 @@
 // actors too, and the ego vehicle is drawn under the rig. Legacy: flowscape 0.9's box models
 // (assets/legacy_models.cpp), byte for byte.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "assets/people.h"
@@ -48,7 +49,11 @@ class ActorLibrary {
   std::vector<Actor> vehicle_of(assets::Family family, int variant, assets::Livery livery,
                                 std::uint16_t instance, std::shared_ptr<const Track> track);
   Actor person_of(const assets::Look& look, std::uint16_t instance,
-                  std::shared_ptr<const Track> track, double speed);
+                  std::shared_ptr<const Track> track, double speed,
+                  std::optional<double> gait_phase = std::nullopt);
+  // A person standing at `pose` all the time, both feet flat, shifting weight and looking round.
+  Actor standing_person(std::uint16_t instance, const Pose& pose, bool child,
+                        const Mesh* user_model);
   // An asset pack's model (its own materials) on built-in road wheels where the pack says.
   std::vector<Actor> pack_vehicle(std::shared_ptr<const Mesh> body, const PackModel& model,
                                   std::uint16_t instance, std::shared_ptr<const Track> track);

@@ -1,5 +1,6 @@
 // City names, the validation of a CityConfig and the city's JSON record (meta.json "city").
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "city_layout.h"
@@ -9,6 +10,10 @@ namespace flowscape {
 namespace {
 
 constexpr int kMaxActors = 200;
+// Walking and standing people per map (map order as map_name's): a downtown pavement busy, a
+// rural one sparse; with the release's 120 vehicles the busiest map is at the 200.
+constexpr StreetLife kStreetLife[kMapCount] = {{56, 24}, {26, 8},  {14, 4}, {8, 3},
+                                               {45, 15}, {50, 18}, {18, 6}, {40, 14}};
 const char* const kKindNames[] = {"car",        "truck", "bus",       "bike",
                                   "pedestrian", "lorry", "motorbike", "rider"};
 
@@ -27,6 +32,25 @@ EgoRoute route_from_name(const std::string& name) {
 }
 
 std::string map_name(int map) { return map == kUserWorldMap ? "user_world" : style_of(map).name; }
+
+StreetLife street_life(int map) {
+  style_of(map);  // throws for a map that is none
+  return kStreetLife[map];
+}
+
+StreetLife people_on_foot(int map, int vehicles, int walking, int standing) {
+  if (map == kUserWorldMap) return {std::max(walking, 0), std::max(standing, 0)};
+  const StreetLife life = street_life(map);
+  const int room = std::max(0, kMaxActors - vehicles);
+  if (walking >= 0 && standing < 0)  // as many standing for the walkers as the map has
+    return {walking, std::min(room - std::min(walking, room),
+                              int(std::lround(double(walking) * life.standing / life.walking)))};
+  if (walking >= 0) return {walking, standing};
+  const int left = std::max(0, room - std::max(standing, 0));
+  const int asked = life.walking + (standing < 0 ? life.standing : 0);
+  const auto share = [&](int count) { return asked <= left ? count : count * left / asked; };
+  return {share(life.walking), standing < 0 ? share(life.standing) : standing};
+}
 
 std::string style_name(ActorStyle style) {
   return style == ActorStyle::Legacy ? "legacy" : "detailed";
@@ -52,7 +76,7 @@ void validate(const CityConfig& c) {
     throw std::invalid_argument("a world file stands for map " + std::to_string(kUserWorldMap) +
                                 ", not map " + std::to_string(c.map));
   if (!c.world) style_of(c.map);
-  if (c.world && (c.vehicles > 0 || c.pedestrians > 0 || c.draw_ego))
+  if (c.world && (c.vehicles > 0 || c.pedestrians > 0 || c.standing > 0 || c.draw_ego))
     throw std::invalid_argument(
         "a user world has no roads: no traffic and no ego vehicle (its actors are scripted, its "
         "rig follows a path of its own)");
@@ -68,12 +92,13 @@ void validate(const CityConfig& c) {
           "an actor given a start drives on a map's roads: a vehicle, in a built-in map, at a "
           "speed in (0, 60] m/s");
   }
-  if (c.vehicles < 0 || c.pedestrians < 0)
+  if (c.vehicles < 0 || c.pedestrians < 0 || c.standing < 0)
     throw std::invalid_argument("vehicle and pedestrian counts must not be negative");
-  if (c.vehicles + c.pedestrians > kMaxActors)
+  if (c.vehicles + c.pedestrians + c.standing > kMaxActors)
     throw std::invalid_argument("at most " + std::to_string(kMaxActors) +
-                                " vehicles and pedestrians per map, asked for " +
-                                std::to_string(c.vehicles + c.pedestrians));
+                                " vehicles and pedestrians (walking and standing) per map, asked "
+                                "for " +
+                                std::to_string(c.vehicles + c.pedestrians + c.standing));
   if (c.ego_start < 0 || c.ego_start >= 100)
     throw std::invalid_argument("ego start " + std::to_string(c.ego_start) + " is not in 0..99");
   if (!(c.lane_change_at >= 0 && c.lane_change_at <= 3600))
@@ -98,6 +123,7 @@ nlohmann::json to_json(const City& city) {
     if (a.parked) record["parked"] = true;
     if (a.ego) record["ego"] = true;
     if (a.scripted) record["scripted"] = true;
+    if (a.standing) record["standing"] = true;
     if (!a.model.empty()) record["model"] = a.model;
     if (!a.family.empty()) record["family"] = a.family;
     actors.push_back(record);
@@ -117,6 +143,7 @@ nlohmann::json to_json(const City& city) {
                            {"start_points", city.start_points.size()},
                            {"actors", actors}};
   if (c.ego_route == EgoRoute::LaneChange) record["lane_change_at"] = c.lane_change_at;
+  if (c.standing > 0) record["standing"] = c.standing;
   if (c.actors == ActorStyle::Legacy) return record;  // the records of flowscape 0.9, unchanged
   record["actor_style"] = style_name(c.actors);
   if (!c.asset_packs.empty()) record["asset_packs"] = c.asset_packs;
@@ -146,6 +173,7 @@ CityConfig config_from_json(const nlohmann::json& record) {
     c.seed = record.at("seed").get<std::uint64_t>();
     c.vehicles = record.at("vehicles").get<int>();
     c.pedestrians = record.at("pedestrians").get<int>();
+    c.standing = record.value("standing", 0);
     c.ego_start = record.value("ego_start", 0);
     c.ego_route = route_from_name(record.value("ego_route", "free"));
     c.lane_change_at = record.value("lane_change_at", 1.0);

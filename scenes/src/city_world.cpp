@@ -382,12 +382,7 @@ class WorldBuilder {
                      V3(0.9, 0.08, 0.06), {C::Pole, palette_.metal});
     add_oriented_box(mesh_, upright(spot + toward_road * 1.6, kCurb + 6.3, yaw),
                      V3(0.3, 0.14, 0.06), {C::Pole, palette_.lamp});  // the lamp head
-    // its light: 1500 cd of warm white down a cone 50-72 degrees wide, just under the head
-    Lamp light;
-    light.position = at(spot + toward_road * 1.6, kCurb + 6.22);
-    light.cos_inner = std::cos(50 * kPi / 180), light.cos_outer = std::cos(72 * kPi / 180);
-    light.intensity = Eigen::Vector3f(1.0f, 0.86f, 0.68f) * 0.015f;
-    scene_.lamps.push_back(light);
+    scene_.lamps.push_back(street_lamp_light(at(spot + toward_road * 1.6, kCurb + 6.22)));
   }
 
   // A trunk and a crown of irregular leaf clusters around it.
@@ -757,6 +752,14 @@ class WorldBuilder {
 
 std::vector<Footprint> build_world(const Layout& layout, std::uint64_t seed, Scene& scene) {
   return WorldBuilder(layout, seed, scene).build();
+}
+
+Lamp street_lamp_light(const Vec3& position) {
+  Lamp light;
+  light.position = position;
+  light.cos_inner = std::cos(50 * kPi / 180), light.cos_outer = std::cos(72 * kPi / 180);
+  light.intensity = Eigen::Vector3f(1.0f, 0.86f, 0.68f) * 0.015f;
+  return light;
 }
 
 }  // namespace flowscape

@@ -55,7 +55,7 @@ def test_a_user_world_with_scripted_actors_at_its_own_frame_rate(tmp_path):
                                         {"position": [30, -2, 0], "speed": 9}]}
     s = sc.scenario(world_file=world, waypoints=walk, actors=[car], frames=2, frame_rate=10,
                     name="square")
-    assert s["traffic"] == {"vehicles": 0, "pedestrians": 0}
+    assert s["traffic"] == {"vehicles": 0, "pedestrians": 0, "standing": 0}
     image = sc.preview(s, frame=0, height=16, spp=1)
     assert image.shape == (16, 32, 3) and image.max() > 0
     with pytest.raises(ValueError, match="matches no class pattern"):

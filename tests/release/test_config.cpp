@@ -37,6 +37,13 @@ TEST_CASE("release configs round-trip through JSON and bad values are named") {
                     Catch::Contains("unknown weather preset \"hail\""));
   CHECK_THROWS_WITH(release_config_from_json({{"vehicles", 150}, {"pedestrians", 60}}),
                     Catch::Contains("vehicles + pedestrians"));
+  CHECK_THROWS_WITH(
+      release_config_from_json({{"vehicles", 120}, {"pedestrians", 60}, {"standing", 21}}),
+      Catch::Contains("vehicles + pedestrians + standing must be in 0..200"));
+  CHECK_THROWS_WITH(release_config_from_json({{"standing", -2}}), Catch::Contains("standing"));
+  CHECK((ReleaseConfig{}.pedestrians == -1 && ReleaseConfig{}.standing == -1));  // the map's own
+  // a release from before people stood had none
+  CHECK(release_config_from_json(with_absent_keys({{"pedestrians", 80}})).standing == 0);
 }
 
 TEST_CASE("config sources: defaults, then --demo, then the config file, then the command line") {
@@ -164,7 +171,7 @@ TEST_CASE("the options table holds every key of config.json once, each read, wri
   for (const auto& [key, value] : written.items())
     CHECK(std::binary_search(keys.begin(), keys.end(), key));
   nlohmann::json expected = written;  // and the keys added since, at their defaults
-  for (const char* added : {"temporal", "edge_spp"})
+  for (const char* added : {"temporal", "edge_spp", "standing"})
     expected[added] = to_json(ReleaseConfig{})[added];
   CHECK(to_json(release_config_from_json(written)) == expected);
   for (const ReleaseOption& option : release_options()) {

@@ -177,6 +177,26 @@ TEST_CASE("weather by parameters: set exactly over the seed's preset, named when
                     Catch::Contains("scenario: weather: ") && Catch::Contains("fog_density"));
 }
 
+TEST_CASE("a scenario's people on foot: the map's own unless given, none where recorded before") {
+  const ReleaseConfig config;
+  const auto city_of = [&](const nlohmann::json& traffic, const char* generator = nullptr) {
+    nlohmann::json j = {{"flowscape_scenario", 1}, {"world", {{"map", "rural"}, {"seed", 1}}}};
+    if (!traffic.is_null()) j["traffic"] = traffic;
+    if (generator) j["generator"] = generator;
+    return sequence_spec(config, scenario_from_json(j)).city;
+  };
+  const StreetLife rural = street_life(3);
+  CHECK(city_of(nullptr).pedestrians == rural.walking);
+  CHECK(city_of(nullptr).standing == rural.standing);
+  // standing in the map's proportion to the walkers given: 16 x 3 / 8
+  CHECK(city_of({{"pedestrians", 16}}).standing == 6);
+  CHECK(city_of({{"pedestrians", 16}, {"standing", 2}}).standing == 2);
+  CHECK(city_of({{"vehicles", 120}, {"pedestrians", 80}}, "flowscape 0.19.0").standing == 0);
+  CHECK_THROWS_WITH(scenario_from_json({{"flowscape_scenario", 1},
+                                        {"traffic", {{"pedestrians", 60}, {"standing", 30}}}}),
+                    Catch::Contains("vehicles + pedestrians + standing"));
+}
+
 TEST_CASE("a built-in map's sequence rendered from its recorded scenario has the same bytes") {
   TempDir dir;
   ReleaseConfig config = tiny_release_config(2, 2);

@@ -7,35 +7,16 @@
 #include "flowscape/scenes/city.h"
 #include "flowscape/scenes/model_io.h"
 #include "flowscape/scenes/skinning.h"
+#include "footprint.h"
 #include "temp_dir.h"
 
 using namespace flowscape;
 using V2 = Eigen::Vector2d;
+using test::Box2, test::corners, test::footprint, test::overlap;
 
 namespace {
 
 constexpr double kFrame = 1 / kFrameRate;  // one frame
-
-// An oriented rectangle in the ground plane: centre, unit axes and half extents.
-struct Box2 {
-  V2 centre, axis[2];
-  double half[2];
-};
-
-// The footprint of an actor at time t, measured from its own triangles (every part posed).
-Box2 footprint(const Actor& actor, double t) {
-  const Pose pose = actor.pose(t);
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e9), hi = -lo;
-  for (const Part& part : actor.parts) {
-    for (const Eigen::Vector3d& p : part_vertices_at(part, t))  // already in the actor's frame
-      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  }
-  const Eigen::Vector3d centre = pose * ((lo + hi) / 2);
-  const Eigen::Matrix3d r = pose.linear();
-  return {centre.head<2>(),
-          {r.col(0).head<2>().normalized(), r.col(1).head<2>().normalized()},
-          {(hi.x() - lo.x()) / 2, (hi.y() - lo.y()) / 2}};
-}
 
 Box2 ego_footprint(const City& city, double t) {
   const Pose pose = city.ego(t);
@@ -43,26 +24,6 @@ Box2 ego_footprint(const City& city, double t) {
       pose.translation().head<2>(),
       {pose.linear().col(0).head<2>().normalized(), pose.linear().col(1).head<2>().normalized()},
       {city.ego_size.x() / 2, city.ego_size.y() / 2}};
-}
-
-std::array<V2, 4> corners(const Box2& b) {
-  const V2 u = b.axis[0] * b.half[0], v = b.axis[1] * b.half[1];
-  return {b.centre - u - v, b.centre + u - v, b.centre + u + v, b.centre - u + v};
-}
-
-// Separating-axis test of two convex quadrilaterals (touching counts as apart).
-bool overlap(const std::array<V2, 4>& a, const std::array<V2, 4>& b) {
-  for (const auto* poly : {&a, &b})
-    for (int k = 0; k < 4; ++k) {
-      const V2 edge = (*poly)[(k + 1) % 4] - (*poly)[k], normal(-edge.y(), edge.x());
-      double a_lo = 1e18, a_hi = -1e18, b_lo = 1e18, b_hi = -1e18;
-      for (const V2& p : a)
-        a_lo = std::min(a_lo, normal.dot(p)), a_hi = std::max(a_hi, normal.dot(p));
-      for (const V2& p : b)
-        b_lo = std::min(b_lo, normal.dot(p)), b_hi = std::max(b_hi, normal.dot(p));
-      if (a_hi <= b_lo || b_hi <= a_lo) return false;
-    }
-  return true;
 }
 
 double yaw(const Pose& p) { return std::atan2(p.linear()(1, 0), p.linear()(0, 0)); }

@@ -67,7 +67,8 @@ void validate(const ReleaseConfig& c) {
     require(within_world({c.rig_mount[0], c.rig_mount[1], c.rig_mount[2]}),
             "rig_mount's x, y, z must lie within 1,000 km (metres)");
   for (const std::string& sky : c.skies) validate_sky(sky);
-  require(c.vehicles + c.pedestrians <= 200, "vehicles + pedestrians must be in 0..200");
+  require(c.vehicles + std::max(c.pedestrians, 0) + std::max(c.standing, 0) <= 200,
+          "vehicles + pedestrians + standing must be in 0..200");
   require(c.asset_packs.empty() || c.actors == "detailed", "asset_packs need detailed actors");
   require(c.temporal == 0 || c.adaptive == 0,
           "temporal and adaptive do not go together (adaptive sampling picks pixels per frame)");

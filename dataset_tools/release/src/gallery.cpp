@@ -6,6 +6,7 @@
 #include "flowscape/formats/semantic_viz.h"
 #include "flowscape/formats/srgb.h"
 #include "flowscape/release/sequence.h"
+#include "flowscape/scenes/city.h"
 #include "flowscape/scenes/showcase.h"
 #include "flowscape/weather/weather.h"
 
@@ -32,11 +33,7 @@ FramePair view_from(const Showcase& model, double azimuth) {
 // (1500 cd down a wide cone, as the maps' lamps) 6 m up, 4 m to the model's right.
 void light_for(const std::string& time, Showcase& model) {
   apply_weather(at_time_of_day(weather_preset("sunny"), time, 0), 0, fixed_pose(), model.scene);
-  Lamp street;
-  street.position = Vec3(0, -4, 6);
-  street.cos_inner = std::cos(50 * kPi / 180), street.cos_outer = std::cos(72 * kPi / 180);
-  street.intensity = Eigen::Vector3f(1.0f, 0.86f, 0.68f) * 0.015f;
-  model.scene.lamps.push_back(street);
+  model.scene.lamps.push_back(street_lamp_light(Vec3(0, -4, 6)));
 }
 
 // One model's row at `time` (empty: sky light): its four views, then its semantics.

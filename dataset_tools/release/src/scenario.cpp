@@ -209,7 +209,7 @@ void world_from_json(const nlohmann::json& world, const std::filesystem::path& b
   model.classes = world_classes(world.value("classes", nlohmann::json()));
   s.world_file = std::move(model);
   s.map = kUserWorldMap;
-  s.vehicles = s.pedestrians = 0;
+  s.vehicles = s.pedestrians = s.standing = 0;
 }
 
 nlohmann::json world_json(const Scenario& s) {
@@ -423,12 +423,15 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
           "a world file has no roads for an ego vehicle: give the rig \"waypoints\" or a "
           "\"pose_file\" in \"motion\"");
   const nlohmann::json traffic = j.value("traffic", nlohmann::json::object());
-  require_known(traffic, {"vehicles", "pedestrians"}, "traffic: ");
+  require_known(traffic, {"vehicles", "pedestrians", "standing"}, "traffic: ");
   s.vehicles = integer(traffic, "vehicles", s.vehicles, 0, 200, "traffic: ");
-  s.pedestrians = integer(traffic, "pedestrians", s.pedestrians, 0, 200, "traffic: ");
-  require(s.vehicles >= 0 && s.pedestrians >= 0 && s.vehicles + s.pedestrians <= 200,
-          "traffic: vehicles + pedestrians must be in 0..200");
-  require(!s.world_file || s.vehicles + s.pedestrians == 0,
+  s.pedestrians = integer(traffic, "pedestrians", s.pedestrians, -1, 200, "traffic: ");
+  // a scenario a release recorded before people stood had none
+  s.standing =
+      integer(traffic, "standing", s.generator.empty() ? s.standing : 0, -1, 200, "traffic: ");
+  require(s.vehicles + std::max(s.pedestrians, 0) + std::max(s.standing, 0) <= 200,
+          "traffic: vehicles + pedestrians + standing must be in 0..200");
+  require(!s.world_file || s.vehicles + std::max(s.pedestrians, 0) + std::max(s.standing, 0) == 0,
           "traffic: a world file has no roads or sidewalks for traffic (place \"actors\" "
           "with waypoints)");
   const nlohmann::json actors = j.value("actors", nlohmann::json::array());
@@ -474,20 +477,22 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
 }
 
 nlohmann::json to_json(const Scenario& s) {
-  nlohmann::json j = {{"flowscape_scenario", kScenarioSchema},
-                      {"name", s.name},
-                      {"world", world_json(s)},
-                      {"rig", s.rig},
-                      {"ego", s.ego},
-                      {"motion", motion_json(s)},
-                      {"traffic", {{"vehicles", s.vehicles}, {"pedestrians", s.pedestrians}}},
-                      {"weather", s.weather_parameters.empty()
-                                      ? nlohmann::json(s.weather)
-                                      : merged({{"preset", s.weather}}, s.weather_parameters)},
-                      {"time_of_day", s.time_of_day},
-                      {"sky", s.sky},
-                      {"frames", s.frames},
-                      {"frame_rate", s.frame_rate}};
+  nlohmann::json j = {
+      {"flowscape_scenario", kScenarioSchema},
+      {"name", s.name},
+      {"world", world_json(s)},
+      {"rig", s.rig},
+      {"ego", s.ego},
+      {"motion", motion_json(s)},
+      {"traffic",
+       {{"vehicles", s.vehicles}, {"pedestrians", s.pedestrians}, {"standing", s.standing}}},
+      {"weather", s.weather_parameters.empty()
+                      ? nlohmann::json(s.weather)
+                      : merged({{"preset", s.weather}}, s.weather_parameters)},
+      {"time_of_day", s.time_of_day},
+      {"sky", s.sky},
+      {"frames", s.frames},
+      {"frame_rate", s.frame_rate}};
   if (!s.rig_mount.empty()) j["rig_mount"] = s.rig_mount;
   if (!s.generator.empty()) j["generator"] = s.generator;
   if (!s.models.empty()) j["models"] = s.models;
@@ -541,13 +546,15 @@ Scenario scenario_of(const ReleaseConfig& config, const SequencePlan& plan) {
   if (plan.scenario_file.empty()) {
     s.name = plan.name, s.map = plan.map, s.seed = plan.seed;
     s.route = config.ego_routes == "free" ? "free" : plan.turns ? "turn" : "drive";
-    s.vehicles = config.vehicles, s.pedestrians = config.pedestrians;
+    s.vehicles = config.vehicles, s.pedestrians = config.pedestrians, s.standing = config.standing;
     for (const auto& [kind, file] : config.models)
       s.models[kind] = std::filesystem::absolute(file).string();
     s.weather = plan.weather, s.time_of_day = plan.time_of_day, s.sky = plan.sky;
   }
   s.rig = config.rig, s.rig_mount = config.rig_mount, s.ego = config.ego;  // the release's
   s.frames = config.frames;
+  const StreetLife people = people_on_foot(s.map, s.vehicles, s.pedestrians, s.standing);
+  s.pedestrians = people.walking, s.standing = people.standing;
   s.generator = kGeneratorVersion;  // what renders it now
   return s;
 }

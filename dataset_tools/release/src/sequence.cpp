@@ -32,8 +32,9 @@ SequenceSpec sequence_spec(const ReleaseConfig& config, const Scenario& s,
                            const std::filesystem::path& source) {
   SequenceSpec spec;
   CityConfig& city = spec.city;
-  city.map = s.map, city.seed = s.seed, city.vehicles = s.vehicles,
-  city.pedestrians = s.pedestrians;
+  const StreetLife people = people_on_foot(s.map, s.vehicles, s.pedestrians, s.standing);
+  city.map = s.map, city.seed = s.seed, city.vehicles = s.vehicles;
+  city.pedestrians = people.walking, city.standing = people.standing;
   city.ego_start = int(s.seed % 100), city.ego_route = route_from_name(s.route);
   city.lane_change_at = s.lane_change_at;
   city.models = config.models;
@@ -333,6 +334,7 @@ nlohmann::json actor_records(const Sequence& s, int frames, const std::string& c
       if (of.parked) record["parked"] = true;
       if (of.ego) record["ego"] = true;
       if (of.scripted) record["scripted"] = true;
+      if (of.standing) record["standing"] = true;
       if (!of.family.empty()) record["family"] = of.family;
       if (!of.model.empty()) {
         record["model"] = of.model;

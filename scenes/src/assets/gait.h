@@ -25,6 +25,9 @@ struct Gait {
 };
 // A gait for a person walking at about `speed` m/s (running from 2.2 m/s), varied by `seed`.
 Gait gait_for(const Skeleton& skeleton, double speed, std::uint64_t seed, bool umbrella);
+// The phase of one who stands and never walks: one foot flat in mid-stance, the other mid-swing,
+// which at rest is flat on the ground beside it.
+inline constexpr double kStandingPhase = 0.3;
 
 // The pose of `track` where it has covered `distance` metres (extrapolated along its first and
 // last heading beyond the span it covers).

@@ -93,7 +93,10 @@ struct CityConfig {
   int map = 0;  // 0 .. kMapCount - 1
   std::uint64_t seed = 0;
   int vehicles = 60, pedestrians = 60;  // at most 200 together (the ego vehicle not counted)
-  int ego_start = 0;                    // index into City::start_points
+  // People standing or waiting on the pavements round the ego's way, alone or in groups of up to
+  // four, where no walker passes (counted in the 200 too).
+  int standing = 0;
+  int ego_start = 0;  // index into City::start_points
   EgoRoute ego_route = EgoRoute::Free;
   double lane_change_at = 1.0;  // seconds (EgoRoute::LaneChange)
   double duration = 4.0;        // seconds of traffic to simulate (poses hold after it)
@@ -114,6 +117,18 @@ struct CityConfig {
 };
 void validate(const CityConfig& config);  // throws std::invalid_argument naming the bad value
 
+// The people on foot a map has by default, walking and standing: busy downtown to sparse rural
+// (docs/scenes.md).
+struct StreetLife {
+  int walking, standing;
+};
+StreetLife street_life(int map);
+// The people on foot of a city of `vehicles`: `walking` and `standing` as given, where -1 stands
+// for the map's street_life: standing in the map's proportion to the walkers given, or both the
+// map's, scaled down to the room the vehicles (and a standing count given) leave in the 200. A
+// user's world has none.
+StreetLife people_on_foot(int map, int vehicles, int walking, int standing);
+
 // A place on a lane where the ego vehicle (or an actor) can start.
 struct StartPoint {
   int lane;
@@ -127,11 +142,16 @@ struct ActorRecord {
   int lane;  // lane (vehicles) or sidewalk loop (pedestrians) it starts on; -1: none
   double s, speed;
   bool parked = false, ego = false, scripted = false;
+  bool standing = false;   // a person standing (CityConfig::standing): lane -1, speed 0
   std::string model = "";  // an asset pack's model ("torcs/p406"), or empty: a built-in one
   // The built-in vehicle family it shows ("van", "city_bus", ...), or empty: a person, a user's
   // or a pack's model, the ego, a legacy box.
   std::string family = "";
 };
+
+// The light of a street lamp whose head hangs at `position` (the world's frame): 1500 cd of warm
+// white straight down a cone 50-72 degrees wide, as the maps' street lights give.
+Lamp street_lamp_light(const Vec3& position);
 
 // How the camera rig sits on the ego, drawn per city seed (per sequence in a release): its height
 // above the ego's origin and the sway of a sprung body, pitch and roll that oscillate with the

@@ -52,7 +52,9 @@ struct ReleaseConfig {
   // Skies (weather.h's under_sky: "physical", or a real HDR sky map whose sun replaces the time of
   // day), cycled over the release's sequences by their number.
   std::vector<std::string> skies{"physical"};
-  int vehicles = 120, pedestrians = 80;
+  // People on foot per map, walking and standing (scenes/city.h's CityConfig): -1, the map's own
+  // (street_life: downtown busy, rural sparse).
+  int vehicles = 120, pedestrians = -1, standing = -1;
   // The share of sequences whose ego turns left or right at a junction within its frames (city.h's
   // EgoRoute::Turn; the others drive on as traffic lets them, EgoRoute::Drive): sequence number n
   // of the release turns when floor((n + 1) x share) > floor(n x share), so 1/3: every third.

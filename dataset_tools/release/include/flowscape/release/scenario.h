@@ -52,7 +52,9 @@ struct Scenario {
   std::string route = "drive";  // the ego's: drive, turn, lane_change, free (city.h's EgoRoute)
   double lane_change_at = 1.0;  // seconds: when a lane_change route changes lanes (at the soonest)
   std::optional<RigPath> path;  // instead of the ego's route
-  int vehicles = 120, pedestrians = 80;
+  // People walking and standing: -1, the map's own (city.h's people_on_foot; scenario_of sets
+  // the numbers).
+  int vehicles = 120, pedestrians = -1, standing = -1;
   // User models for actor kinds (car, truck, bus, bike, pedestrian -> a glTF or assimp file),
   // over the release's own (--model); absolute paths.
   std::map<std::string, std::string> models;
