@@ -3,7 +3,8 @@
 // each of the 8 maps (the release's first sequence of the map, its seed, ego route and traffic),
 // the release's weather mix spread over the 8 (sunny x5, cloud, fog, rain), the six cube faces of
 // two frames as the release renders them (colour denoised, sRGB), each with its instance and
-// semantic image, and actors.json (every instance's kind, class and built-in family). A config.json
+// semantic image and depth (centimetres, 16-bit), and actors.json (every instance's kind, class
+// and built-in family). A config.json
 // (the gen_flowscape config keys) changes what the release would change (actor models, class
 // table...); the set is by day unless its `times_of_day` says otherwise (cycled over the maps, like
 // the weathers).
@@ -39,6 +40,15 @@ void write_faces(const fs::path& dir, const std::string& kind, const Image<T>& c
   for (Face face : kFaces)
     write_image(dir / (std::string(face_name(face)) + "_" + kind + ".png"),
                 face_view(cube.view(), face));
+}
+
+// Depth in centimetres (the sky and anything beyond 655 m: 65535), for telling what stands in front
+// of an actor.
+Image<std::uint16_t> depth_centimetres(const Image<float>& depth) {
+  Image<std::uint16_t> out(depth.width, depth.height, 1);
+  for (std::size_t k = 0; k < depth.data.size(); ++k)
+    out.data[k] = std::uint16_t(std::min(65535.0, std::round(100.0 * double(depth.data[k]))));
+  return out;
 }
 
 nlohmann::json actor_list(const Sequence& sequence) {
@@ -93,6 +103,7 @@ int main(int argc, char** argv) {
                         denoised_cube_color(color_section(config), cube.color, cube.truth).view()));
         write_faces(dir, "instance", cube.truth.instance);
         write_faces(dir, "semantic", cube.truth.semantic);
+        write_faces(dir, "depth", depth_centimetres(cube.truth.depth));
         std::ofstream(dir / "actors.json") << nlohmann::json{
             {"map", map_name(plan.map)},
             {"weather", spec.weather},

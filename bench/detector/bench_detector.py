@@ -15,7 +15,8 @@ found when a detection of its family (score >= 0.3) overlaps its box with IoU >=
 detection finding at most one object. A detection is a false positive when it finds no object and
 lies less than half inside any object of its family (counted or not: small, cut by the border, the
 ego vehicle, a parked car) and, on renders, less than 40 % of its box shows pixels of its
-family's classes.
+family's classes. Renders also report the objects in full view (under a tenth of their outline
+borders anything nearer: not partly hidden behind others, poles or trees) on their own.
 
 usage: bench_detector.py [--set DIR,... | --render DIR [--times day,night]] [--real]
                          [--detectors centernet,nanodet] [--config JSON] [--draw DIR]
@@ -38,6 +39,10 @@ sys.path.insert(0, HERE)
 MIN_PIXELS, MIN_SMALL_PIXELS, MIN_REAL_BOX_AREA, SCORE, IOU = 500, 200, 800, 0.3, 0.5
 LOW_SCORE = 0.15  # detections from here to SCORE only explain misses
 SMALL = 32 * 32  # pixels: "under 32 px square", COCO's small objects
+# An object is in full view when less than this share of its outline borders something nearer
+# (another actor or the world at under 0.9 of its depth, bench_realism_render's depth image):
+# nothing stands in front of it, as in the real photos' annotated vehicles.
+IN_FULL_VIEW, NEARER = 0.1, 0.9
 # COCO ids (0-based, as the model's class channel) of the families scored.
 PERSON, VEHICLE = "person", "vehicle"
 COCO_FAMILY = {0: PERSON, 1: VEHICLE, 2: VEHICLE, 3: VEHICLE, 5: VEHICLE, 7: VEHICLE}
@@ -221,8 +226,10 @@ def score_image(all_dets, objects, tally, class_image=None):
                 best, best_iou = k, overlap
         if best is not None:
             used.add(best)
-        tally.add(obj["row"], None if best is not None else why_missed(obj, all_dets),
-                  obj.get("pixels"))
+        miss = None if best is not None else why_missed(obj, all_dets)
+        tally.add(obj["row"], miss, obj.get("pixels"))
+        if obj.get("hidden") is not None and obj["hidden"] < IN_FULL_VIEW:
+            tally.add(f"{obj['row']} in full view", miss, obj.get("pixels"))
     for k, d in enumerate(dets):
         if k in used:
             continue
@@ -244,8 +251,26 @@ def read_png(path):
     return image
 
 
-def render_objects(instance, actors):
-    """Every actor seen in an instance image: its family, row, pixel box and whether it counts."""
+def hidden_share(mask, depth):
+    """The share of a mask's outline pixels with a neighbour outside it (4-connected) nearer than
+    NEARER x their depth: where something stands in front of the object."""
+    h, w = mask.shape
+    padded = np.pad(mask, 1)
+    inner = padded[1:-1, 1:-1] & padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & \
+        padded[1:-1, 2:]
+    outline = mask & ~inner
+    deep = np.pad(depth.astype(np.float64), 1, constant_values=np.inf)
+    hidden = np.zeros_like(mask)
+    for dy, dx in ((-1, 0), (1, 0), (0, -1), (0, 1)):
+        other = deep[1 + dy:h + 1 + dy, 1 + dx:w + 1 + dx]
+        outside = ~padded[1 + dy:h + 1 + dy, 1 + dx:w + 1 + dx]
+        hidden |= outline & outside & (other < NEARER * depth)
+    return hidden.sum() / max(outline.sum(), 1)
+
+
+def render_objects(instance, actors, depth=None):
+    """Every actor seen in an instance image: its family, row, pixel box, whether it counts and
+    (given the depth image) the share of its outline something nearer borders (hidden_share)."""
     h, w = instance.shape
     ids, counts = np.unique(instance, return_counts=True)
     objects = []
@@ -259,8 +284,10 @@ def render_objects(instance, actors):
         if row == "car" and record.get("family") == "van":  # a van: a car kind of its own family
             row = "van"
         touches = box[0] == 0 or box[1] == 0 or box[2] == w or box[3] == h
+        hidden = None if depth is None else hidden_share(instance == i, depth)
         objects.append({"family": family, "row": row, "box": box, "pixels": int(n),
-                        "counted": n >= MIN_SMALL_PIXELS and not touches and not record.get("ego")})
+                        "counted": n >= MIN_SMALL_PIXELS and not touches and not record.get("ego"),
+                        "hidden": hidden})
     return objects
 
 
@@ -298,7 +325,9 @@ def score_renders(detectors, folders, faces, drawings=None):
             for face in faces:
                 base = os.path.join(folder, frame, face)
                 rgb = cv2.cvtColor(read_png(base + "_color.png"), cv2.COLOR_BGR2RGB)
-                objects = render_objects(read_png(base + "_instance.png"), meta["actors"])
+                depth = base + "_depth.png"
+                objects = render_objects(read_png(base + "_instance.png"), meta["actors"],
+                                         read_png(depth) if os.path.exists(depth) else None)
                 semantic = read_png(base + "_semantic.png")
                 for name, detector in detectors.items():
                     dets = detect(detector, rgb)
@@ -373,6 +402,13 @@ def report_detector(name, tallies, real, times):
                 report(f"  {time_of_day} >= 200, kinds", group, kinds, MIN_SMALL_PIXELS,
                        false_positives=False)
         report("  side faces only", tallies["side faces"], families)
+        in_full_view = [(label, [f"{row} in full view" for row in rows]) for label, rows in families]
+        report("  in full view >= 500", every, in_full_view, false_positives=False)
+        report("  in full view >= 200", every, in_full_view, MIN_SMALL_PIXELS,
+               false_positives=False)
+        report("  in full view >= 200, kinds", every,
+               [(row, [f"{row} in full view"]) for row, _ in kinds], MIN_SMALL_PIXELS,
+               false_positives=False)
         for label, min_pixels in ((">= 500", MIN_PIXELS), (">= 200", MIN_SMALL_PIXELS)):
             misses = [m for m in every.misses(VEHICLE_ROWS, min_pixels) if m]
             reasons = ", ".join(f"{r} {misses.count(r)}"

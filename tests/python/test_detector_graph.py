@@ -107,3 +107,21 @@ def test_scoring_counts_misses_by_reason():
     assert tally.recall(["car"], 200) == (0.2, 5)
     assert tally.recall(["car"], 200, 500) == (0.0, 1)
     assert tally.false == 1  # the box off: 100 of its 280 px inside the third car
+
+
+def test_objects_in_full_view_are_scored_on_their_own():
+    from bench_detector import VEHICLE, Tally, render_objects, score_image
+    instance = np.zeros((50, 50), np.uint16)
+    depth = np.full((50, 50), 5000, np.uint16)  # the world 50 m away
+    instance[5:15, 5:25], depth[5:15, 5:25] = 1, 2000    # in front of the world: in full view
+    instance[20:40, 5:15], depth[20:40, 5:15] = 2, 2000
+    instance[20:40, 15:20], depth[20:40, 15:20] = 3, 1000  # nearer, along its right side
+    actors = {str(k): {"kind": "car"} for k in (1, 2, 3)}
+    objects = render_objects(instance, actors, depth)
+    # the second's outline: 56 pixels, the 20 of its right column bordered by the nearer one
+    assert [o["hidden"] for o in objects] == [0.0, 20 / 56, 0.0]
+    assert render_objects(instance, actors)[0]["hidden"] is None  # no depth image
+    tally = Tally()
+    score_image([(VEHICLE, 0.9, 5, 5, 25, 15)], objects, tally)
+    assert tally.recall(["car"], 200) == (0.5, 2)  # the third has 100 px: not counted
+    assert tally.recall(["car in full view"], 200) == (1.0, 1)
