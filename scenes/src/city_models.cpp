@@ -110,7 +110,7 @@ struct ActorLibrary::Impl {
   std::map<Livery, std::shared_ptr<const Mesh>> roofs;
   std::map<double, std::uint16_t> tyres;
   std::uint16_t glass, bus_glass, trim, chrome, head_lamp, tail_lamp, indicator, marker, interior,
-      underbody, grille, eyes, dark_head_lamp, dark_tail_lamp, dark_marker;
+      underbody, grille, eyes, dark_head_lamp, dark_tail_lamp;
 
   Impl(Scene& s, std::uint64_t city_seed, bool rain) : scene(s), seed(city_seed), wet(rain) {
     glass = add_material(scene, cm::clear_glass());
@@ -124,7 +124,6 @@ struct ActorLibrary::Impl {
     marker = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}, Rgb(1, 0.45f, 0.04f) * 0.003f));
     dark_head_lamp = add_material(scene, cm::lamp({0.85f, 0.85f, 0.82f}));
     dark_tail_lamp = add_material(scene, cm::lamp({0.6f, 0.03f, 0.02f}));
-    dark_marker = add_material(scene, cm::lamp({0.8f, 0.35f, 0.02f}));
     interior = add_material(scene, cm::upholstery(seed));
     underbody = add_material(scene, cm::underbody());
     grille = add_material(scene, cm::grille());
@@ -496,7 +495,7 @@ void ActorLibrary::switch_off_lamps(Actor& vehicle) const {
     for (std::uint16_t& material : part.materials) {
       if (material == impl_->head_lamp) material = impl_->dark_head_lamp;
       if (material == impl_->tail_lamp) material = impl_->dark_tail_lamp;
-      if (material == impl_->marker) material = impl_->dark_marker;
+      if (material == impl_->marker) material = impl_->indicator;  // the same amber, unlit
     }
 }
 

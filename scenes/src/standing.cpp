@@ -23,7 +23,16 @@ struct Pavement {
   double from_way = 0;
 };
 
-std::vector<Pavement> pavements(const Layout& layout) {
+// How near p comes to the ego's way (its track sampled every quarter second).
+double distance_to_way(const Track& ego, const V2& p) {
+  double nearest = 1e18;
+  for (std::size_t k = 0; k < ego.poses.size(); k += 15)
+    nearest = std::min(nearest, (ego.poses[k].translation().head<2>() - p).norm());
+  return nearest;
+}
+
+// The pavements of the map's blocks, each with how near it comes to the ego's way.
+std::vector<Pavement> pavements(const Layout& layout, const Track& ego) {
   std::vector<Pavement> out;
   const double w = layout.style.sidewalk;
   for (const Block& b : layout.blocks) {
@@ -35,6 +44,11 @@ std::vector<Pavement> pavements(const Layout& layout) {
                                {V2(b.lo.x(), b.hi.y()), V2(1, 0), V2(0, -1), size.x(), w}};
     for (int k = 0; k < 4; ++k)
       if (b.road_beside[k] && w > 2 * kFromEdges) out.push_back(sides[k]);
+  }
+  for (Pavement& p : out) {
+    p.from_way = 1e18;
+    for (double s = 0; s <= p.length; s += 2)
+      p.from_way = std::min(p.from_way, distance_to_way(ego, p.start + s * p.along));
   }
   return out;
 }
@@ -54,6 +68,18 @@ struct WalkerSpan {
   V2 lo, hi;
 };
 
+std::vector<WalkerSpan> walker_spans(const std::vector<Track>& tracks) {
+  std::vector<WalkerSpan> spans;
+  for (const Track& track : tracks) {
+    WalkerSpan span{&track, V2::Constant(1e18), V2::Constant(-1e18)};
+    for (const Pose& pose : track.poses)
+      span.lo = span.lo.cwiseMin(pose.translation().head<2>()),
+      span.hi = span.hi.cwiseMax(pose.translation().head<2>());
+    spans.push_back(span);
+  }
+  return spans;
+}
+
 bool clear_of_walkers(const std::vector<WalkerSpan>& walkers, const V2& p, double clear) {
   for (const WalkerSpan& w : walkers) {
     if ((p.array() < w.lo.array() - clear).any() || (p.array() > w.hi.array() + clear).any())
@@ -62,13 +88,6 @@ bool clear_of_walkers(const std::vector<WalkerSpan>& walkers, const V2& p, doubl
       if ((pose.translation().head<2>() - p).norm() < clear) return false;
   }
   return true;
-}
-
-double distance_to_way(const Track& ego, const V2& p) {
-  double nearest = 1e18;
-  for (std::size_t k = 0; k < ego.poses.size(); k += 15)
-    nearest = std::min(nearest, (ego.poses[k].translation().head<2>() - p).norm());
-  return nearest;
 }
 
 // The pavements that come within `reach` of the ego's way.
@@ -95,26 +114,32 @@ double lone_yaw(const Pavement& pavement, Random& random) {
   return std::atan2(look.y(), look.x()) + random.uniform(-0.4, 0.4);
 }
 
+// `size` people round `middle` on `pavement`, `apart` from their neighbours, facing the middle (one
+// alone: lone_yaw), a quarter of the others children.
+std::vector<StandingPerson> group_round(const Layout& layout, const Pavement& pavement,
+                                        const V2& middle, int size, double apart, Random& random) {
+  const double radius = size == 1 ? 0 : apart / (2 * std::sin(kPi / size));
+  const double turn = random.uniform(0, 2 * kPi);
+  std::vector<StandingPerson> members;
+  for (int k = 0; k < size; ++k) {
+    const double angle = turn + 2 * kPi * k / size;
+    const V2 at = middle + radius * V2(std::cos(angle), std::sin(angle));
+    const double yaw =
+        size == 1 ? lone_yaw(pavement, random) : angle + kPi + random.uniform(-0.3, 0.3);
+    const PathPoint point{at, V2(std::cos(yaw), std::sin(yaw))};
+    members.push_back({ground_pose(layout, point, kCurb), k > 0 && random.chance(0.25)});
+  }
+  return members;
+}
+
 }  // namespace
 
 std::vector<StandingPerson> place_standing(const Layout& layout, const TrafficTracks& tracks,
                                            int count, std::uint64_t seed, bool wet) {
   std::vector<StandingPerson> people;
   if (count == 0) return people;
-  std::vector<Pavement> ways = pavements(layout);
-  for (Pavement& p : ways) {
-    p.from_way = 1e18;
-    for (double s = 0; s <= p.length; s += 2)
-      p.from_way = std::min(p.from_way, distance_to_way(tracks.vehicles[0], p.start + s * p.along));
-  }
-  std::vector<WalkerSpan> walkers;
-  for (const Track& track : tracks.walkers) {
-    WalkerSpan span{&track, V2::Constant(1e18), V2::Constant(-1e18)};
-    for (const Pose& pose : track.poses)
-      span.lo = span.lo.cwiseMin(pose.translation().head<2>()),
-      span.hi = span.hi.cwiseMax(pose.translation().head<2>());
-    walkers.push_back(span);
-  }
+  const std::vector<Pavement> ways = pavements(layout, tracks.vehicles[0]);
+  const std::vector<WalkerSpan> walkers = walker_spans(tracks.walkers);
   // apart by this much, middle to middle: people of a group, and anyone from a walker (open
   // umbrellas of 0.5 m radius need more)
   const double apart = wet ? 1.3 : 0.9, from_walkers = wet ? 1.5 : 0.85;
@@ -131,17 +156,8 @@ std::vector<StandingPerson> place_standing(const Layout& layout, const TrafficTr
                         random.uniform(kFromEdges, pavement.width - kFromEdges) * pavement.inward;
       if (distance_to_way(tracks.vehicles[0], middle) > reach) continue;
       const int size = std::min(group_size(random), count - int(people.size()));
-      const double radius = size == 1 ? 0 : apart / (2 * std::sin(kPi / size));
-      const double turn = random.uniform(0, 2 * kPi);
-      std::vector<StandingPerson> members;
-      for (int k = 0; k < size; ++k) {
-        const double angle = turn + 2 * kPi * k / size;
-        const V2 at = middle + radius * V2(std::cos(angle), std::sin(angle));
-        const double yaw =
-            size == 1 ? lone_yaw(pavement, random) : angle + kPi + random.uniform(-0.3, 0.3);
-        const PathPoint point{at, V2(std::cos(yaw), std::sin(yaw))};
-        members.push_back({ground_pose(layout, point, kCurb), k > 0 && random.chance(0.25)});
-      }
+      const std::vector<StandingPerson> members =
+          group_round(layout, pavement, middle, size, apart, random);
       placed = std::all_of(members.begin(), members.end(), [&](const StandingPerson& m) {
         const V2 at = m.pose.translation().head<2>();
         return on_pavement(layout, at) && clear_of_walkers(walkers, at, from_walkers) &&
