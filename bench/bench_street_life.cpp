@@ -18,6 +18,10 @@ constexpr double kNear = 30, kCell = 0.5;
 
 struct Tally {
   double people = 0, standing = 0, pavement = 0;
+  Tally& operator+=(const Tally& o) {
+    people += o.people, standing += o.standing, pavement += o.pavement;
+    return *this;
+  }
 };
 
 Tally round_the_ego(int map, std::uint64_t seed, StreetLife life) {
@@ -62,10 +66,8 @@ int main(int argc, char** argv) {
     Tally old_life, own_life;
     for (int s = 0; s < seeds; ++s) {
       const std::uint64_t seed = std::uint64_t(1000 * map + s);
-      const Tally a = round_the_ego(map, seed, {80, 0}),
-                  b = round_the_ego(map, seed, street_life(map));
-      old_life.people += a.people, old_life.standing += a.standing, old_life.pavement += a.pavement;
-      own_life.people += b.people, own_life.standing += b.standing, own_life.pavement += b.pavement;
+      old_life += round_the_ego(map, seed, {80, 0});
+      own_life += round_the_ego(map, seed, street_life(map));
     }
     const std::string name = map_name(map);
     print_row(name.c_str(), "80 walk", old_life, seeds);

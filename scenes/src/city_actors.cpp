@@ -77,6 +77,11 @@ void add_actors(std::vector<Actor> actors, ActorRecord record, City& city) {
   }
 }
 
+// The track of an actor that stands at `pose` all the sequence (a parked car, a person standing).
+std::shared_ptr<const Track> still_track(const Pose& pose) {
+  return std::make_shared<const Track>(Track{1, {pose}, {0}});
+}
+
 // A vehicle with its record: `model`, or (none) the built-in family the library draws for it.
 void add_vehicle(ActorLibrary& library, ActorKind kind, std::shared_ptr<const Track> track,
                  const Mesh* model, ActorRecord record, City& city) {
@@ -179,7 +184,7 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
     ActorRecord record{next(), ActorKind::Car, -1, 0, 0};
     record.parked = true;
     const std::size_t first = city.scene.actors.size();
-    vehicle(ActorKind::Car, std::make_shared<const Track>(Track{1, {pose}, {0}}), record);
+    vehicle(ActorKind::Car, still_track(pose), record);
     for (std::size_t a = first; a < city.scene.actors.size(); ++a)
       library.switch_off_lamps(city.scene.actors[a]);
   }
@@ -196,15 +201,11 @@ void add_detailed_actors(const PlacedTraffic& traffic, const std::map<ActorKind,
 
 namespace {
 
-// A standing person's record and track: where it stands, all the sequence.
+// A standing person's record.
 ActorRecord standing_record(const City& city) {
   ActorRecord record{std::uint16_t(city.scene.actors.size() + 1), ActorKind::Pedestrian, -1, 0, 0};
   record.standing = true;
   return record;
-}
-
-std::shared_ptr<const Track> still_track(const Pose& pose) {
-  return std::make_shared<const Track>(Track{1, {pose}, {0}});
 }
 
 }  // namespace
@@ -224,7 +225,7 @@ void add_standing(const std::vector<StandingPerson>& people,
                   const std::map<ActorKind, Mesh>& models, ActorLibrary& library, City& city) {
   for (const StandingPerson& person : people) {
     const ActorRecord record = standing_record(city);
-    add_actors({library.standing_person(record.instance, person.pose, person.child,
+    add_actors({library.standing_person(record.instance, still_track(person.pose), person.child,
                                         user_model_of(models, ActorKind::Pedestrian))},
                record, city);
   }

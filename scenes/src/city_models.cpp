@@ -427,23 +427,21 @@ Actor ActorLibrary::ego(std::uint16_t instance, PoseTrack rig, std::shared_ptr<c
 }
 
 Actor ActorLibrary::pedestrian(std::uint16_t instance, std::shared_ptr<const Track> track,
-                               double speed, bool child, const Mesh* user_model) {
+                               double speed, bool child, const Mesh* user_model,
+                               std::optional<double> gait_phase) {
   if (user_model) {
     Actor actor{instance, {}, [track](double t) { return track->pose(t); }};
     actor.parts.push_back(rigid_part(*user_model));
     return actor;
   }
   Random random(derived_seed(impl_->seed, instance, 0x706572736f6eull));  // "person"
-  return person_of(random_look(random, child, impl_->wet), instance, std::move(track), speed);
+  return person_of(random_look(random, child, impl_->wet), instance, std::move(track), speed,
+                   gait_phase);
 }
 
-Actor ActorLibrary::standing_person(std::uint16_t instance, const Pose& pose, bool child,
-                                    const Mesh* user_model) {
-  auto still = std::make_shared<const Track>(Track{1, {pose}, {0}});
-  if (user_model) return pedestrian(instance, std::move(still), 0, child, user_model);
-  Random random(derived_seed(impl_->seed, instance, 0x706572736f6eull));  // "person"
-  return person_of(random_look(random, child, impl_->wet), instance, std::move(still), 0,
-                   assets::kStandingPhase);
+Actor ActorLibrary::standing_person(std::uint16_t instance, std::shared_ptr<const Track> still,
+                                    bool child, const Mesh* user_model) {
+  return pedestrian(instance, std::move(still), 0, child, user_model, assets::kStandingPhase);
 }
 
 Actor ActorLibrary::person_of(const Look& look, std::uint16_t instance,

@@ -43,16 +43,19 @@ class ActorLibrary {
                              std::shared_ptr<const Track> track, const Mesh* user_model);
   // The family name (assets::family_name) vehicle() shows without a user model.
   std::string family(ActorKind kind, std::uint16_t instance) const;
+  // A person following `track`; `gait_phase`: the gait's at distance 0 (else drawn).
   Actor pedestrian(std::uint16_t instance, std::shared_ptr<const Track> track, double speed,
-                   bool child, const Mesh* user_model);
+                   bool child, const Mesh* user_model,
+                   std::optional<double> gait_phase = std::nullopt);
   // The same with the family, variant and livery (a person's look) given: galleries and tests.
   std::vector<Actor> vehicle_of(assets::Family family, int variant, assets::Livery livery,
                                 std::uint16_t instance, std::shared_ptr<const Track> track);
   Actor person_of(const assets::Look& look, std::uint16_t instance,
                   std::shared_ptr<const Track> track, double speed,
                   std::optional<double> gait_phase = std::nullopt);
-  // A person standing at `pose` all the time, both feet flat, shifting weight and looking round.
-  Actor standing_person(std::uint16_t instance, const Pose& pose, bool child,
+  // A person standing where `still` (one pose) puts it, both feet flat, shifting weight and
+  // looking round.
+  Actor standing_person(std::uint16_t instance, std::shared_ptr<const Track> still, bool child,
                         const Mesh* user_model);
   // An asset pack's model (its own materials) on built-in road wheels where the pack says.
   std::vector<Actor> pack_vehicle(std::shared_ptr<const Mesh> body, const PackModel& model,

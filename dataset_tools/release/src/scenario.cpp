@@ -429,9 +429,9 @@ Scenario scenario_from_json(const nlohmann::json& j, const std::filesystem::path
   // a scenario a release recorded before people stood had none
   s.standing =
       integer(traffic, "standing", s.generator.empty() ? s.standing : 0, -1, 200, "traffic: ");
-  require(s.vehicles + std::max(s.pedestrians, 0) + std::max(s.standing, 0) <= 200,
-          "traffic: vehicles + pedestrians + standing must be in 0..200");
-  require(!s.world_file || s.vehicles + std::max(s.pedestrians, 0) + std::max(s.standing, 0) == 0,
+  const int road_users = s.vehicles + std::max(s.pedestrians, 0) + std::max(s.standing, 0);
+  require(road_users <= 200, "traffic: vehicles + pedestrians + standing must be in 0..200");
+  require(!s.world_file || road_users == 0,
           "traffic: a world file has no roads or sidewalks for traffic (place \"actors\" "
           "with waypoints)");
   const nlohmann::json actors = j.value("actors", nlohmann::json::array());
